@@ -1,0 +1,37 @@
+// Reading and writing fuzzylite's FLL language.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "fuzzygait/fuzzy/engine.hpp"
+
+namespace fuzzygait::fuzzy {
+
+// A problem in a text file, located by file and line ("file:line: message").
+class ParseError : public std::runtime_error {
+ public:
+  ParseError(std::string source, int line, const std::string& message);
+  const std::string& source() const { return source_; }
+  int line() const { return line_; }
+  const std::string& detail() const { return detail_; }
+
+ private:
+  std::string source_;
+  int line_;
+  std::string detail_;
+};
+
+// Parses FLL text. `source` names the text in error messages (usually the file path).
+// Stricter than fuzzylite where fuzzylite would guess: unknown keys, missing or extra term
+// parameters, unparsable rules and unsorted Discrete points are errors, never defaults.
+Engine read_fll(std::string_view text, std::string_view source = "<fll>");
+Engine read_fll_file(const std::filesystem::path& path);
+
+// Writes FLL that fuzzylite reads, with every number in its shortest exact form, so that
+// reading it back gives the same engine (a lossless round trip).
+std::string write_fll(const Engine& engine);
+
+}  // namespace fuzzygait::fuzzy

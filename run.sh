@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# fuzzygait's two entry points (see README):
+#   ./run.sh          installs what is missing, builds, and runs the main job on the default
+#   ./run.sh test     installs what is missing, builds, and runs every test
+#                     (Release build, ASan+UBSan build, libFuzzer run of the FLL reader)
+set -euo pipefail
+cd "$(dirname "$0")"
+root=$(pwd)
+jobs=$(nproc 2>/dev/null || echo 2)
+
+"$root/scripts/install-deps.sh"
+
+configure_and_build() {  # dir, extra cmake args...
+  local dir=$1
+  shift
+  cmake -S "$root" -B "$root/$dir" -G Ninja -DFUZZYGAIT_WERROR=ON "$@" >/dev/null
+  cmake --build "$root/$dir" -j "$jobs"
+}
+
+mode=${1:-main}
+case "$mode" in
+  main)
+    configure_and_build build -DCMAKE_BUILD_TYPE=Release
+    mkdir -p "$root/out"
+    echo "== the paper's ease-in/ease-out controller over its input range"
+    "$root/build/fuzzygait" fuzzy eval "$root/controllers/paper/ease_in_out.fll" --grid 21
+    ;;
+  test)
+    echo "== Release build and tests"
+    configure_and_build build -DCMAKE_BUILD_TYPE=Release
+    (cd "$root/build" && ctest --output-on-failure -j "$jobs")
+    echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+    configure_and_build build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFUZZYGAIT_SANITIZE=ON \
+      -DFUZZYGAIT_BUILD_BENCH=OFF
+    (cd "$root/build-sanitize" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+      ctest --output-on-failure -j "$jobs" -LE slow)
+    if [[ -f "$root/fuzz/CMakeLists.txt" ]] && grep -q add_executable "$root/fuzz/CMakeLists.txt"; then
+      echo "== libFuzzer run of the FLL reader (clang)"
+      configure_and_build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+        -DFUZZYGAIT_FUZZ=ON -DFUZZYGAIT_BUILD_TESTS=ON -DFUZZYGAIT_BUILD_BENCH=OFF
+      (cd "$root/build-fuzz" && ctest --output-on-failure -L fuzz)
+    fi
+    echo "== all tests passed"
+    ;;
+  *)
+    echo "usage: $0 [test]" >&2
+    exit 2
+    ;;
+esac

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs every Debian package that fuzzygait's build, tests and benchmarks need.
+# Idempotent: does nothing when all are present. Run as root (apt-get).
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build ccache pkg-config git
+  clang libclang-rt-14-dev         # libFuzzer target for the FLL reader
+  # libraries (MIT/BSD/Apache: may be linked into the library and the program)
+  libeigen3-dev nlohmann-json3-dev libcli11-dev libceres-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # GPL reference oracle: linked only by the tests and by fuzzygait-bench
+  libfuzzylite-dev fuzzylite
+  # BVH import check with three.js (npm lock file in tests/js)
+  nodejs npm
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  exit 0
+fi
+if [[ $(id -u) -ne 0 ]]; then
+  echo "install-deps: missing packages: ${missing[*]}" >&2
+  echo "install-deps: run as root (or: sudo $0)" >&2
+  exit 1
+fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

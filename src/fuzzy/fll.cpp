@@ -1,0 +1,442 @@
+#include "fuzzygait/fuzzy/fll.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace fuzzygait::fuzzy {
+namespace {
+
+std::string_view trim(std::string_view text) {
+  const char* blanks = " \t\r\n\v\f";
+  const std::size_t first = text.find_first_not_of(blanks);
+  if (first == std::string_view::npos) return {};
+  const std::size_t last = text.find_last_not_of(blanks);
+  return text.substr(first, last - first + 1);
+}
+
+std::vector<std::string_view> words(std::string_view text) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
+    std::size_t j = i;
+    while (j < text.size() && text[j] != ' ' && text[j] != '\t') ++j;
+    if (j > i) out.push_back(text.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+bool valid_name(std::string_view name) {
+  if (name.empty()) return false;
+  for (char c : name) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '.';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+struct Entry {
+  int line;
+  std::string key;
+  std::string value;
+};
+
+class Reader {
+ public:
+  explicit Reader(std::string_view source) : source_(source) {}
+
+  Engine read(std::string_view text) {
+    std::vector<Entry> block;
+    int number = 0;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+      std::size_t end = text.find('\n', start);
+      if (end == std::string_view::npos) end = text.size();
+      std::string_view line = text.substr(start, end - start);
+      start = end + 1;
+      ++number;
+      line = trim(line.substr(0, line.find('#')));
+      if (line.empty()) continue;
+      const std::size_t colon = line.find(':');
+      if (colon == std::string_view::npos) {
+        fail(number, "expected 'key: value', found '" + std::string(line) + "'");
+      }
+      Entry entry{number, std::string(trim(line.substr(0, colon))),
+                  std::string(trim(line.substr(colon + 1)))};
+      if (entry.key == "Engine") {
+        engine_.name = entry.value;
+        continue;
+      }
+      if (entry.key == "description" && block.empty()) {
+        engine_.description = entry.value;
+        continue;
+      }
+      if (entry.key == "InputVariable" || entry.key == "OutputVariable" ||
+          entry.key == "RuleBlock") {
+        process(block);
+        block.clear();
+      } else if (block.empty()) {
+        fail(number, "'" + entry.key +
+                         "' must belong to an InputVariable, OutputVariable or RuleBlock");
+      }
+      block.push_back(std::move(entry));
+    }
+    process(block);
+    return std::move(engine_);
+  }
+
+ private:
+  [[noreturn]] void fail(int line, const std::string& message) const {
+    throw ParseError(source_, line, message);
+  }
+
+  bool boolean(const Entry& e) const {
+    if (e.value == "true") return true;
+    if (e.value == "false") return false;
+    fail(e.line, "'" + e.key + "' must be true or false, found '" + e.value + "'");
+  }
+
+  double scalar(const Entry& e, std::string_view text, const std::string& what) const {
+    if (const std::optional<double> v = parse_scalar(text)) return *v;
+    fail(e.line, what + " must be a number, found '" + std::string(text) + "'");
+  }
+
+  int count(const Entry& e, std::string_view text, const std::string& what) const {
+    const double v = scalar(e, text, what);
+    if (!(v == std::floor(v)) || v < -1e9 || v > 1e9) {
+      fail(e.line, what + " must be a whole number, found '" + std::string(text) + "'");
+    }
+    return static_cast<int>(v);
+  }
+
+  std::string name(const Entry& e, const std::string& what) const {
+    if (!valid_name(e.value)) {
+      fail(e.line, what + " name '" + e.value +
+                       "' must be letters, digits, '_' or '.', and not empty");
+    }
+    return e.value;
+  }
+
+  void range(const Entry& e, double& minimum, double& maximum) const {
+    const std::vector<std::string_view> w = words(e.value);
+    if (w.size() != 2) fail(e.line, "range must be two numbers 'minimum maximum'");
+    minimum = scalar(e, w[0], "range minimum");
+    maximum = scalar(e, w[1], "range maximum");
+  }
+
+  void unique_variable(const Entry& e, const std::string& variable) const {
+    if (engine_.find_input(variable) || engine_.find_output(variable)) {
+      fail(e.line, "variable '" + variable + "' is defined twice");
+    }
+  }
+
+  Term term(const Entry& e, const std::vector<Term>& existing, const std::string& variable) const {
+    const std::vector<std::string_view> w = words(e.value);
+    if (w.size() < 2) fail(e.line, "a term needs 'name Shape parameters', found '" + e.value + "'");
+    const std::string term_name(w[0]);
+    if (!valid_name(term_name)) {
+      fail(e.line, "term name '" + term_name + "' must be letters, digits, '_' or '.'");
+    }
+    for (const Term& t : existing) {
+      if (t.name == term_name) {
+        fail(e.line, "term '" + term_name + "' is defined twice in '" + variable + "'");
+      }
+    }
+    const std::optional<TermKind> kind = term_kind_from_name(w[1]);
+    if (!kind) fail(e.line, "unknown term shape '" + std::string(w[1]) + "'");
+    const std::size_t rest = w.size() > 2 ? static_cast<std::size_t>(w[2].data() - e.value.data())
+                                          : e.value.size();
+    try {
+      return make_term(term_name, *kind, std::string_view(e.value).substr(rest));
+    } catch (const std::invalid_argument& error) {
+      fail(e.line, error.what());
+    }
+  }
+
+  void process(const std::vector<Entry>& block) {
+    if (block.empty()) return;
+    const std::string& tag = block.front().key;
+    if (tag == "InputVariable") {
+      input(block);
+    } else if (tag == "OutputVariable") {
+      output(block);
+    } else {
+      rule_block(block);
+    }
+  }
+
+  void input(const std::vector<Entry>& block) {
+    InputVariable v;
+    v.name = name(block.front(), "input variable");
+    unique_variable(block.front(), v.name);
+    for (std::size_t i = 1; i < block.size(); ++i) {
+      const Entry& e = block[i];
+      if (e.key == "description") {
+        v.description = e.value;
+      } else if (e.key == "enabled") {
+        v.enabled = boolean(e);
+      } else if (e.key == "range") {
+        range(e, v.minimum, v.maximum);
+      } else if (e.key == "lock-range") {
+        v.lock_range = boolean(e);
+      } else if (e.key == "term") {
+        v.terms.push_back(term(e, v.terms, v.name));
+      } else {
+        fail(e.line, "unknown key '" + e.key + "' in InputVariable '" + v.name + "'");
+      }
+    }
+    engine_.inputs.push_back(std::move(v));
+  }
+
+  void output(const std::vector<Entry>& block) {
+    OutputVariable v;
+    v.name = name(block.front(), "output variable");
+    unique_variable(block.front(), v.name);
+    for (std::size_t i = 1; i < block.size(); ++i) {
+      const Entry& e = block[i];
+      if (e.key == "description") {
+        v.description = e.value;
+      } else if (e.key == "enabled") {
+        v.enabled = boolean(e);
+      } else if (e.key == "range") {
+        range(e, v.minimum, v.maximum);
+      } else if (e.key == "lock-range") {
+        v.lock_range = boolean(e);
+      } else if (e.key == "default") {
+        v.default_value = scalar(e, e.value, "default");
+      } else if (e.key == "lock-previous" || e.key == "lock-valid") {
+        v.lock_previous = boolean(e);
+      } else if (e.key == "aggregation" || e.key == "accumulation") {
+        const std::optional<SNorm> s = snorm_from_name(e.value);
+        if (!s) fail(e.line, "unknown S-norm '" + e.value + "' for aggregation");
+        v.aggregation = *s;
+      } else if (e.key == "defuzzifier") {
+        v.defuzzifier = defuzzifier(e);
+      } else if (e.key == "term") {
+        v.terms.push_back(term(e, v.terms, v.name));
+      } else {
+        fail(e.line, "unknown key '" + e.key + "' in OutputVariable '" + v.name + "'");
+      }
+    }
+    engine_.outputs.push_back(std::move(v));
+  }
+
+  std::optional<Defuzzifier> defuzzifier(const Entry& e) const {
+    const std::vector<std::string_view> w = words(e.value);
+    if (w.empty()) fail(e.line, "defuzzifier is empty (write 'none' for no defuzzifier)");
+    if (w[0] == "none" && w.size() == 1) return std::nullopt;
+    const std::optional<Defuzzifier::Kind> kind = defuzzifier_from_name(w[0]);
+    if (!kind) fail(e.line, "unknown defuzzifier '" + std::string(w[0]) + "'");
+    if (w.size() > 2) fail(e.line, "too many parameters for defuzzifier '" + e.value + "'");
+    Defuzzifier d;
+    d.kind = *kind;
+    if (w.size() == 2) {
+      if (d.is_integral()) {
+        d.resolution = count(e, w[1], "defuzzifier resolution");
+        if (d.resolution < 1) fail(e.line, "defuzzifier resolution must be at least 1");
+      } else {
+        const std::optional<Defuzzifier::WeightedType> type = weighted_type_from_name(w[1]);
+        if (!type) {
+          fail(e.line, "weighted defuzzifier type must be Automatic, TakagiSugeno or "
+                       "Tsukamoto, found '" + std::string(w[1]) + "'");
+        }
+        d.type = *type;
+      }
+    }
+    return d;
+  }
+
+  Activation activation(const Entry& e) const {
+    const std::vector<std::string_view> w = words(e.value);
+    if (w.empty()) fail(e.line, "activation is empty (write 'General' or 'none')");
+    const std::optional<Activation::Kind> kind = activation_from_name(w[0]);
+    if (!kind) fail(e.line, "unknown activation method '" + std::string(w[0]) + "'");
+    Activation a;
+    a.kind = *kind;
+    const std::size_t parameters = w.size() - 1;
+    auto expect = [&](std::size_t allowed_a, std::size_t allowed_b, const char* form) {
+      if (parameters != allowed_a && parameters != allowed_b) {
+        fail(e.line, "activation '" + e.value + "' must read '" + form + "'");
+      }
+    };
+    switch (a.kind) {
+      case Activation::Kind::None:
+        expect(0, 0, "none");
+        break;
+      case Activation::Kind::General:
+        expect(0, 0, "General");
+        break;
+      case Activation::Kind::Proportional:
+        expect(0, 0, "Proportional");
+        break;
+      case Activation::Kind::Threshold:
+        expect(0, 2, "Threshold [< | <= | == | != | >= | >] value");
+        if (parameters == 2) {
+          const std::optional<Activation::Comparison> c = comparison_from_name(w[1]);
+          if (!c) fail(e.line, "unknown comparison '" + std::string(w[1]) + "' in Threshold");
+          a.comparison = *c;
+          a.threshold = scalar(e, w[2], "threshold");
+        }
+        break;
+      case Activation::Kind::First:
+      case Activation::Kind::Last:
+        expect(0, 2, "First|Last [rules threshold]");
+        if (parameters == 2) {
+          a.number_of_rules = count(e, w[1], "number of rules");
+          a.threshold = scalar(e, w[2], "threshold");
+        }
+        break;
+      case Activation::Kind::Highest:
+      case Activation::Kind::Lowest:
+        expect(1, 1, "Highest|Lowest rules");
+        a.number_of_rules = count(e, w[1], "number of rules");
+        break;
+    }
+    return a;
+  }
+
+  void rule_block(const std::vector<Entry>& block) {
+    RuleBlock b;
+    b.name = block.front().value;
+    for (std::size_t i = 1; i < block.size(); ++i) {
+      const Entry& e = block[i];
+      if (e.key == "description") {
+        b.description = e.value;
+      } else if (e.key == "enabled") {
+        b.enabled = boolean(e);
+      } else if (e.key == "conjunction" || e.key == "implication") {
+        const std::optional<TNorm> t = tnorm_from_name(e.value);
+        if (!t) fail(e.line, "unknown T-norm '" + e.value + "' for " + e.key);
+        (e.key == "conjunction" ? b.conjunction : b.implication) = *t;
+      } else if (e.key == "disjunction") {
+        const std::optional<SNorm> s = snorm_from_name(e.value);
+        if (!s) fail(e.line, "unknown S-norm '" + e.value + "' for disjunction");
+        b.disjunction = *s;
+      } else if (e.key == "activation") {
+        // fuzzylite 5 wrote the implication T-norm under this key.
+        const std::optional<TNorm> t = tnorm_from_name(e.value);
+        if (t && *t != TNorm::None) {
+          b.implication = *t;
+        } else {
+          b.activation = activation(e);
+        }
+      } else if (e.key == "rule") {
+        try {
+          b.rules.push_back(parse_rule(e.value, engine_));
+        } catch (const std::invalid_argument& error) {
+          fail(e.line, error.what());
+        }
+      } else {
+        fail(e.line, "unknown key '" + e.key + "' in RuleBlock '" + b.name + "'");
+      }
+    }
+    engine_.rule_blocks.push_back(std::move(b));
+  }
+
+  std::string source_;
+  Engine engine_;
+};
+
+void check_line(const std::string& text, const std::string& what) {
+  if (text.find_first_of("#\n\r") != std::string::npos) {
+    throw std::invalid_argument(what + " '" + text + "' cannot be written to FLL: it holds '#' or "
+                                "a line break");
+  }
+}
+
+std::string range_text(double minimum, double maximum) {
+  return format_scalar(minimum) + " " + format_scalar(maximum);
+}
+
+}  // namespace
+
+ParseError::ParseError(std::string source, int line, const std::string& message)
+    : std::runtime_error(source + (line > 0 ? ":" + std::to_string(line) : std::string()) +
+                         ": " + message),
+      source_(std::move(source)),
+      line_(line),
+      detail_(message) {}
+
+Engine read_fll(std::string_view text, std::string_view source) {
+  return Reader(source).read(text);
+}
+
+Engine read_fll_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ParseError(path.string(), 0, "cannot open the file");
+  std::ostringstream content;
+  content << in.rdbuf();
+  return read_fll(content.str(), path.string());
+}
+
+std::string write_fll(const Engine& engine) {
+  std::ostringstream out;
+  check_line(engine.name, "engine name");
+  out << "Engine: " << engine.name << "\n";
+  if (!engine.description.empty()) {
+    check_line(engine.description, "description");
+    out << "description: " << engine.description << "\n";
+  }
+  auto terms = [&out](const std::vector<Term>& list) {
+    for (const Term& t : list) {
+      check_line(t.formula, "formula");
+      out << "  term: " << t.name << " " << shape_info(t.kind).name;
+      const std::string parameters = t.parameter_text();
+      if (!parameters.empty()) out << " " << parameters;
+      out << "\n";
+    }
+  };
+  auto header = [&out](const char* tag, const std::string& name, const std::string& description,
+                       bool enabled, double minimum, double maximum, bool lock_range) {
+    check_line(name, "variable name");
+    out << tag << ": " << name << "\n";
+    if (!description.empty()) {
+      check_line(description, "description");
+      out << "  description: " << description << "\n";
+    }
+    out << "  enabled: " << (enabled ? "true" : "false") << "\n";
+    out << "  range: " << range_text(minimum, maximum) << "\n";
+    out << "  lock-range: " << (lock_range ? "true" : "false") << "\n";
+  };
+  for (const InputVariable& v : engine.inputs) {
+    header("InputVariable", v.name, v.description, v.enabled, v.minimum, v.maximum, v.lock_range);
+    terms(v.terms);
+  }
+  for (const OutputVariable& v : engine.outputs) {
+    header("OutputVariable", v.name, v.description, v.enabled, v.minimum, v.maximum,
+           v.lock_range);
+    out << "  aggregation: " << name(v.aggregation) << "\n";
+    out << "  defuzzifier: ";
+    if (!v.defuzzifier) {
+      out << "none";
+    } else if (v.defuzzifier->is_integral()) {
+      out << name(v.defuzzifier->kind) << " " << v.defuzzifier->resolution;
+    } else {
+      out << name(v.defuzzifier->kind) << " " << name(v.defuzzifier->type);
+    }
+    out << "\n";
+    out << "  default: " << format_scalar(v.default_value) << "\n";
+    out << "  lock-previous: " << (v.lock_previous ? "true" : "false") << "\n";
+    terms(v.terms);
+  }
+  for (const RuleBlock& b : engine.rule_blocks) {
+    check_line(b.name, "rule block name");
+    out << "RuleBlock: " << b.name << "\n";
+    if (!b.description.empty()) {
+      check_line(b.description, "description");
+      out << "  description: " << b.description << "\n";
+    }
+    out << "  enabled: " << (b.enabled ? "true" : "false") << "\n";
+    out << "  conjunction: " << name(b.conjunction) << "\n";
+    out << "  disjunction: " << name(b.disjunction) << "\n";
+    out << "  implication: " << name(b.implication) << "\n";
+    out << "  activation: " << b.activation.text() << "\n";
+    for (const Rule& r : b.rules) out << "  rule: " << r.text() << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace fuzzygait::fuzzy
