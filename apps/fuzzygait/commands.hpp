@@ -6,5 +6,8 @@
 namespace fuzzygait::cli {
 
 void add_fuzzy_command(CLI::App& app);
+// `fuzzy plot`, a subcommand of `fuzzy` (fuzzy_plot_command.cpp).
+void add_fuzzy_plot_command(CLI::App& fuzzy);
+void add_tune_command(CLI::App& app);
 
 }  // namespace fuzzygait::cli

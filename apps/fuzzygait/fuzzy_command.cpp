@@ -162,7 +162,7 @@ void add_input_options(CLI::App& command, InputOptions& options) {
 }  // namespace
 
 void add_fuzzy_command(CLI::App& app) {
-  CLI::App* fuzzy = app.add_subcommand("fuzzy", "Evaluate, check and export fuzzylite FLL engines");
+  CLI::App* fuzzy = app.add_subcommand("fuzzy", "Evaluate, check, export and plot fuzzylite FLL engines");
   fuzzy->require_subcommand(1);
 
   auto eval_options = std::make_shared<InputOptions>();
@@ -215,6 +215,8 @@ void add_fuzzy_command(CLI::App& app) {
       if (!(out << text.str())) throw std::runtime_error(*export_output + ": cannot write");
     }
   });
+
+  add_fuzzy_plot_command(*fuzzy);
 }
 
 }  // namespace fuzzygait::cli

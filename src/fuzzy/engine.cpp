@@ -53,13 +53,19 @@ std::vector<std::string_view> words(std::string_view text) {
   return out;
 }
 
-std::string proposition_text(const Proposition& p) {
-  std::string out = p.variable + " is";
+// In an antecedent, which goes through the formula language's infix-to-postfix conversion, a
+// name that is also a function or operator of that language ("max", "and") is parenthesised
+// so that it stays in place when read back.
+std::string proposition_text(const Proposition& p, bool antecedent) {
+  auto word = [antecedent](const std::string& name) {
+    return antecedent && is_formula_function(name) ? "(" + name + ")" : name;
+  };
+  std::string out = word(p.variable) + " is";
   for (Hedge h : p.hedges) {
     out += ' ';
     out += name(h);
   }
-  if (!p.term.empty()) out += " " + p.term;
+  if (!p.term.empty()) out += " " + word(p.term);
   return out;
 }
 
@@ -181,7 +187,8 @@ std::string Rule::text() const {
   std::vector<Node> stack;
   for (int token : antecedent) {
     if (token >= 0) {
-      stack.push_back({proposition_text(propositions.at(static_cast<std::size_t>(token))), 2});
+      stack.push_back(
+          {proposition_text(propositions.at(static_cast<std::size_t>(token)), true), 2});
       continue;
     }
     const int precedence = token == kAnd ? 1 : 0;
@@ -196,7 +203,7 @@ std::string Rule::text() const {
   std::string out = "if " + (stack.empty() ? std::string() : stack.back().text) + " then ";
   for (std::size_t i = 0; i < conclusions.size(); ++i) {
     if (i > 0) out += " and ";
-    out += proposition_text(conclusions[i]);
+    out += proposition_text(conclusions[i], false);
   }
   if (!(weight == 1.0)) out += " with " + format_scalar(weight);
   return out;
@@ -271,9 +278,11 @@ std::vector<std::string> Engine::problems() const {
         out.push_back("output variable '" + v.name + "' has an integral defuzzifier (" +
                       std::string(fuzzy::name(v.defuzzifier->kind)) + ") but no aggregation");
       }
-      if (v.defuzzifier->resolution < 1) {
+      if (v.defuzzifier->resolution < 1 ||
+          v.defuzzifier->resolution > Defuzzifier::kMaxResolution) {
         out.push_back("output variable '" + v.name + "' has a defuzzifier resolution of " +
-                      std::to_string(v.defuzzifier->resolution) + "; it must be at least 1");
+                      std::to_string(v.defuzzifier->resolution) + "; it must be from 1 to " +
+                      std::to_string(Defuzzifier::kMaxResolution));
       }
     }
   }

@@ -34,15 +34,142 @@ bool activates(const Activation& a, double degree) {
   return false;
 }
 
-bool takagi_sugeno_kind(TermKind kind) {
-  return kind == TermKind::Constant || kind == TermKind::Linear || kind == TermKind::Function;
+// Output terms sampled once over their grid, at most (8 bytes each); beyond, terms are sampled
+// during each evaluation.
+constexpr std::size_t kMaxGridValues = std::size_t{1} << 22;
+
+// One activated term over the grid: implied[i] = implication(y[i], degree), then
+// mu[i] = aggregation(mu[i], implied[i]), sample by sample with the operators' exact formulas.
+// One loop per operator keeps the dispatch out of the sample loop.
+template <TNorm kImplication>
+void imply(const double* y, double degree, std::size_t n, double* implied) {
+  for (std::size_t i = 0; i < n; ++i)
+    implied[i] = apply(kImplication, y[i], degree);
 }
 
-// Fills out[i] with the shape at x_i = minimum + (i + 0.5) dx. One loop per shape keeps the
-// dispatch out of the sample loop.
-template <class Shape>
-void sample(double minimum, double dx, int n, double* out, Shape shape) {
-  for (int i = 0; i < n; ++i) out[i] = shape(minimum + (i + 0.5) * dx);
+template <SNorm kAggregation>
+void accumulate(const double* implied, std::size_t n, double* mu) {
+  for (std::size_t i = 0; i < n; ++i)
+    mu[i] = apply(kAggregation, mu[i], implied[i]);
+}
+
+void imply(TNorm implication, const double* y, double degree, std::size_t n, double* implied) {
+  if (implication == TNorm::Minimum &&
+      !std::isnan(degree)) {  // nan_min as a select, see aggregate()
+    for (std::size_t i = 0; i < n; ++i)
+      implied[i] = y[i] < degree ? y[i] : degree;
+    return;
+  }
+  switch (implication) {
+    case TNorm::None:
+      return imply<TNorm::None>(y, degree, n, implied);
+    case TNorm::AlgebraicProduct:
+      return imply<TNorm::AlgebraicProduct>(y, degree, n, implied);
+    case TNorm::BoundedDifference:
+      return imply<TNorm::BoundedDifference>(y, degree, n, implied);
+    case TNorm::DrasticProduct:
+      return imply<TNorm::DrasticProduct>(y, degree, n, implied);
+    case TNorm::EinsteinProduct:
+      return imply<TNorm::EinsteinProduct>(y, degree, n, implied);
+    case TNorm::HamacherProduct:
+      return imply<TNorm::HamacherProduct>(y, degree, n, implied);
+    case TNorm::Minimum:
+      return imply<TNorm::Minimum>(y, degree, n, implied);
+    case TNorm::NilpotentMinimum:
+      return imply<TNorm::NilpotentMinimum>(y, degree, n, implied);
+  }
+}
+
+void accumulate(SNorm aggregation, const double* implied, std::size_t n, double* mu) {
+  switch (aggregation) {
+    case SNorm::None:
+      return accumulate<SNorm::None>(implied, n, mu);
+    case SNorm::AlgebraicSum:
+      return accumulate<SNorm::AlgebraicSum>(implied, n, mu);
+    case SNorm::BoundedSum:
+      return accumulate<SNorm::BoundedSum>(implied, n, mu);
+    case SNorm::DrasticSum:
+      return accumulate<SNorm::DrasticSum>(implied, n, mu);
+    case SNorm::EinsteinSum:
+      return accumulate<SNorm::EinsteinSum>(implied, n, mu);
+    case SNorm::HamacherSum:
+      return accumulate<SNorm::HamacherSum>(implied, n, mu);
+    case SNorm::Maximum:
+      return accumulate<SNorm::Maximum>(implied, n, mu);
+    case SNorm::NilpotentMaximum:
+      return accumulate<SNorm::NilpotentMaximum>(implied, n, mu);
+    case SNorm::NormalizedSum:
+      return accumulate<SNorm::NormalizedSum>(implied, n, mu);
+    case SNorm::UnboundedSum:
+      return accumulate<SNorm::UnboundedSum>(implied, n, mu);
+  }
+}
+
+// The linear shapes with fuzzylite's tolerant comparisons reduced to one subtraction each,
+// exact when x and the parameters are not NaN (infinities included): is_lt(x, a) is
+// a - x >= kTolerance, is_gt(x, a) is x - a >= kTolerance, is_eq(x, a) is
+// !(|x - a| >= kTolerance), and is_le / is_ge are the negations of is_gt / is_lt.
+bool tolerant_lt(double x, double a) {
+  return a - x >= kTolerance;
+}
+bool tolerant_gt(double x, double a) {
+  return x - a >= kTolerance;
+}
+
+double triangle(double x, const double* p, double h) {
+  if (std::isnan(x)) return kNaN;
+  const double a = p[0];
+  const double b = p[1];
+  const double c = p[2];
+  if (tolerant_lt(x, a) || tolerant_gt(x, c)) return h * 0.0;
+  if (!(std::abs(x - b) >= kTolerance)) return h * 1.0;
+  if (x < b) return a == -kInfinity ? h * 1.0 : h * (x - a) / (b - a);
+  return c == kInfinity ? h * 1.0 : h * (c - x) / (c - b);
+}
+
+double trapezoid(double x, const double* p, double h) {
+  if (std::isnan(x)) return kNaN;
+  const double a = p[0];
+  const double b = p[1];
+  const double c = p[2];
+  const double d = p[3];
+  if (tolerant_lt(x, a) || tolerant_gt(x, d)) return h * 0.0;
+  if (tolerant_lt(x, b)) return a == -kInfinity ? h * 1.0 : h * nan_min(1.0, (x - a) / (b - a));
+  if (!tolerant_gt(x, c)) return h * 1.0;
+  if (tolerant_lt(x, d)) return d == kInfinity ? h * 1.0 : h * (d - x) / (d - c);
+  return d == kInfinity ? h * 1.0 : h * 0.0;
+}
+
+double ramp(double x, const double* p, double h) {
+  if (std::isnan(x)) return kNaN;
+  const double start = p[0];
+  const double end = p[1];
+  if (is_eq(start, end)) return h * 0.0;
+  if (is_lt(start, end)) {
+    if (!tolerant_gt(x, start)) return h * 0.0;
+    if (!tolerant_lt(x, end)) return h * 1.0;
+    return h * (x - start) / (end - start);
+  }
+  if (!tolerant_lt(x, start)) return h * 0.0;
+  if (!tolerant_gt(x, end)) return h * 1.0;
+  return h * (start - x) / (start - end);
+}
+
+// The connectives of antecedents, with the usual ones inline.
+double conjoin(TNorm norm, double a, double b) {
+  if (norm == TNorm::Minimum) return nan_min(a, b);
+  if (norm == TNorm::AlgebraicProduct) return a * b;
+  return apply(norm, a, b);
+}
+double disjoin(SNorm norm, double a, double b) {
+  return norm == SNorm::Maximum ? nan_max(a, b) : apply(norm, a, b);
+}
+
+bool all_finite(const double* values, std::size_t n) {
+  bool finite = true;
+  for (std::size_t i = 0; i < n; ++i)
+    finite &= std::isfinite(values[i]);
+  return finite;
 }
 
 }  // namespace
@@ -58,18 +185,22 @@ Evaluator::Evaluator(const Engine& engine) {
   const std::vector<std::string> problems = engine.problems();
   if (!problems.empty()) {
     std::string all = "engine '" + engine.name + "' cannot be evaluated: ";
-    for (std::size_t i = 0; i < problems.size(); ++i) all += (i ? "; " : "") + problems[i];
+    for (std::size_t i = 0; i < problems.size(); ++i)
+      all += (i ? "; " : "") + problems[i];
     throw std::invalid_argument(all);
   }
-  auto add_terms = [this, &engine](const std::vector<Term>& terms) {
+  auto add_terms = [this, &engine](const std::vector<Term>& terms, std::size_t variable) {
     const auto first = static_cast<std::uint32_t>(terms_.size());
     for (const Term& t : terms) {
       CompiledTerm c{};
       c.kind = t.kind;
+      c.variable = static_cast<std::uint32_t>(variable);
+      c.parameters_not_nan = std::none_of(t.parameters.begin(), t.parameters.end(),
+                                          [](double p) { return std::isnan(p); });
       c.height = t.height;
       c.parameters = static_cast<std::uint32_t>(parameters_.size());
       c.count = static_cast<std::uint32_t>(t.kind == TermKind::Discrete ? t.parameters.size() / 2
-                                                                         : t.parameters.size());
+                                                                        : t.parameters.size());
       parameters_.insert(parameters_.end(), t.parameters.begin(), t.parameters.end());
       if (t.kind == TermKind::Function) {
         CompiledFormula f{compile_formula(t.formula), {}};
@@ -95,12 +226,12 @@ Evaluator::Evaluator(const Engine& engine) {
     return first;
   };
   for (const InputVariable& v : engine.inputs) {
-    const std::uint32_t first = add_terms(v.terms);
+    const std::uint32_t first = add_terms(v.terms, inputs_.size());
     inputs_.push_back({v.name, v.minimum, v.maximum, v.enabled, v.lock_range, first,
                        static_cast<std::uint32_t>(v.terms.size())});
   }
   for (const OutputVariable& v : engine.outputs) {
-    const std::uint32_t first = add_terms(v.terms);
+    const std::uint32_t first = add_terms(v.terms, outputs_.size());
     CompiledOutput o{};
     o.name = v.name;
     o.minimum = v.minimum;
@@ -113,9 +244,6 @@ Evaluator::Evaluator(const Engine& engine) {
     o.lock_previous = v.lock_previous;
     o.first_term = first;
     o.term_count = static_cast<std::uint32_t>(v.terms.size());
-    if (o.defuzzifier.is_integral()) {
-      max_resolution_ = std::max(max_resolution_, o.defuzzifier.resolution);
-    }
     outputs_.push_back(std::move(o));
   }
 
@@ -139,23 +267,27 @@ Evaluator::Evaluator(const Engine& engine) {
     hedges_.insert(hedges_.end(), p.hedges.begin(), p.hedges.end());
     c.term = -1;
     if (!p.term.empty()) {
-      const std::uint32_t first = p.output ? outputs_[c.variable].first_term
-                                           : inputs_[c.variable].first_term;
+      const std::uint32_t first =
+          p.output ? outputs_[c.variable].first_term : inputs_[c.variable].first_term;
       const std::vector<Term>& terms =
           p.output ? engine.outputs[c.variable].terms : engine.inputs[c.variable].terms;
       for (std::size_t t = 0; t < terms.size(); ++t) {
         if (terms[t].name == p.term) c.term = static_cast<std::int32_t>(first + t);
       }
     }
-    c.variable_enabled = p.output ? engine.outputs[c.variable].enabled
-                                  : engine.inputs[c.variable].enabled;
+    c.variable_enabled =
+        p.output ? engine.outputs[c.variable].enabled : engine.inputs[c.variable].enabled;
     return c;
   };
 
   std::vector<std::size_t> capacity(outputs_.size(), 0);
   for (const RuleBlock& b : engine.rule_blocks) {
-    CompiledBlock block{b.enabled,   b.conjunction, b.disjunction,
-                        b.implication, b.activation, static_cast<std::uint32_t>(rules_.size()),
+    CompiledBlock block{b.enabled,
+                        b.conjunction,
+                        b.disjunction,
+                        b.implication,
+                        b.activation,
+                        static_cast<std::uint32_t>(rules_.size()),
                         static_cast<std::uint32_t>(b.rules.size())};
     max_block_rules_ = std::max(max_block_rules_, b.rules.size());
     for (const Rule& r : b.rules) {
@@ -163,14 +295,56 @@ Evaluator::Evaluator(const Engine& engine) {
       rule.weight = r.weight;
       rule.antecedent = static_cast<std::uint32_t>(antecedent_.size());
       rule.antecedent_length = static_cast<std::uint32_t>(r.antecedent.size());
-      const auto first_proposition = static_cast<std::int32_t>(propositions_.size());
+      // Input propositions read values computed once per evaluation: an unhedged one its
+      // term's membership, any other a slot shared by its equals. Output propositions
+      // (chained engines) read the activations so far, so they are evaluated in rule order.
+      std::vector<std::int32_t> tokens;
+      for (const Proposition& p : r.propositions) {
+        const CompiledProposition c = compile_proposition(p);
+        const auto index = static_cast<std::int32_t>(propositions_.size());
+        propositions_.push_back(c);
+        if (c.output) {
+          tokens.push_back(kOutputProposition - index);
+        } else if (c.variable_enabled && c.hedge_count == 0) {
+          tokens.push_back(c.term);
+        } else {
+          auto same = [this, &c](std::uint32_t other) {
+            const CompiledProposition& o = propositions_[other];
+            return o.variable == c.variable && o.term == c.term &&
+                   o.variable_enabled == c.variable_enabled && o.hedge_count == c.hedge_count &&
+                   std::equal(hedges_.begin() + o.hedges,
+                              hedges_.begin() + o.hedges + o.hedge_count,
+                              hedges_.begin() + c.hedges);
+          };
+          const auto slot = static_cast<std::size_t>(
+              std::find_if(hedged_propositions_.begin(), hedged_propositions_.end(), same) -
+              hedged_propositions_.begin());
+          if (slot == hedged_propositions_.size()) {
+            hedged_propositions_.push_back(static_cast<std::uint32_t>(index));
+          }
+          tokens.push_back(static_cast<std::int32_t>(terms_.size() + slot));
+        }
+        const auto term = static_cast<std::uint32_t>(c.term);
+        if (!c.output && c.term >= 0 &&
+            std::find(fuzzified_terms_.begin(), fuzzified_terms_.end(), term) ==
+                fuzzified_terms_.end()) {
+          fuzzified_terms_.push_back(term);
+        }
+      }
       std::size_t depth = 0;
       for (int token : r.antecedent) {
-        antecedent_.push_back(token >= 0 ? first_proposition + token : token);
+        antecedent_.push_back(token >= 0 ? tokens[static_cast<std::size_t>(token)] : token);
         depth = token >= 0 ? depth + 1 : depth - 1;
         stack_size_ = std::max(stack_size_, depth);
       }
-      for (const Proposition& p : r.propositions) propositions_.push_back(compile_proposition(p));
+      // v0 v1 op v2 op ...: folds from the left without a stack.
+      const std::int32_t* code = antecedent_.data() + rule.antecedent;
+      rule.left_deep = rule.antecedent_length % 2 == 1;
+      for (std::uint32_t i = 0; i < rule.antecedent_length; ++i) {
+        rule.left_deep =
+            rule.left_deep &&
+            (i % 2 == 1 || i == 0 ? code[i] >= 0 : code[i] == Rule::kAnd || code[i] == Rule::kOr);
+      }
       rule.conclusions = static_cast<std::uint32_t>(conclusions_.size());
       rule.conclusion_count = static_cast<std::uint32_t>(r.conclusions.size());
       for (const Proposition& p : r.conclusions) {
@@ -188,6 +362,71 @@ Evaluator::Evaluator(const Engine& engine) {
     offset += capacity[o];
   }
   activated_total_ = offset;
+  for (std::size_t i = 0; i < outputs_.size(); ++i) {
+    CompiledOutput& o = outputs_[i];
+    o.eager = !o.defuzzifier.is_integral();
+    for (std::uint32_t t = o.first_term; t < o.first_term + o.term_count; ++t) {
+      if (terms_[t].formula < 0) continue;
+      for (std::int32_t b : formulas_[static_cast<std::size_t>(terms_[t].formula)].bindings) {
+        o.eager = o.eager && (b == kX || b >= 0);
+      }
+    }
+    for (const CompiledProposition& p : propositions_) {
+      o.eager = o.eager && !(p.output && p.variable == i);
+    }
+  }
+  sample_grids(kMaxGridValues);
+}
+
+// The positions an integral defuzzifier samples, and the membership there of every output term
+// that depends on x alone: the same expressions as fuzzylite's sample loops, computed once.
+void Evaluator::sample_grids(std::size_t max_grid_values) {
+  for (CompiledOutput& o : outputs_) {
+    if (!o.defuzzifier.is_integral() || !std::isfinite(o.minimum + o.maximum)) continue;
+    const int resolution = o.defuzzifier.resolution;
+    const double dx = (o.maximum - o.minimum) / resolution;
+    o.grid = static_cast<std::int32_t>(grid_x_.size());
+    for (int i = 0; i < resolution; ++i)
+      grid_x_.push_back(o.minimum + (i + 0.5) * dx);
+    if (o.defuzzifier.kind == Defuzzifier::Kind::Bisector) {
+      for (int i = 0; i < resolution; ++i)
+        grid_x_.push_back(o.maximum - (i + 0.5) * dx);
+    }
+    o.grid_size = static_cast<std::uint32_t>(grid_x_.size() - static_cast<std::size_t>(o.grid));
+    max_grid_size_ = std::max<std::size_t>(max_grid_size_, o.grid_size);
+  }
+  Workspace scratch = make_workspace();
+  for (const CompiledOutput& o : outputs_) {
+    if (o.grid < 0) continue;
+    const double* x = grid_x_.data() + o.grid;
+    for (std::uint32_t t = o.first_term; t < o.first_term + o.term_count; ++t) {
+      CompiledTerm& term = terms_[t];
+      bool reads_variables = term.kind == TermKind::Linear;
+      if (term.kind == TermKind::Function) {
+        for (std::int32_t b : formulas_[static_cast<std::size_t>(term.formula)].bindings) {
+          reads_variables |= b != kX;
+        }
+      }
+      if (reads_variables || grid_values_.size() + o.grid_size > max_grid_values) continue;
+      term.grid_values = static_cast<std::int32_t>(grid_values_.size());
+      for (std::uint32_t i = 0; i < o.grid_size; ++i) {
+        grid_values_.push_back(membership(term, x[i], scratch));
+      }
+      const double* values = grid_values_.data() + term.grid_values;
+      term.grid_values_finite = all_finite(values, o.grid_size);
+      term.grid_values_nonnegative =
+          term.grid_values_finite &&
+          std::all_of(values, values + o.grid_size, [](double y) { return y >= 0.0; });
+      std::uint32_t first = 0;
+      std::uint32_t last = o.grid_size;
+      while (first < last && values[first] == 0.0)
+        ++first;
+      while (last > first && values[last - 1] == 0.0)
+        --last;
+      term.grid_first = first;
+      term.grid_last = last;
+    }
+  }
 }
 
 Workspace Evaluator::make_workspace() const {
@@ -197,19 +436,67 @@ Workspace Evaluator::make_workspace() const {
   w.previous_values_.assign(outputs_.size(), kNaN);
   w.activated_.resize(activated_total_);
   w.activated_count_.assign(outputs_.size(), 0);
+  w.weighted_sums_.assign(outputs_.size(), {0.0, 0.0});
   w.rule_degrees_.assign(max_block_rules_, 0.0);
   w.heap_.assign(max_block_rules_, 0);
   w.stack_.assign(stack_size_, 0.0);
   w.formula_values_.assign(formula_values_size_, 0.0);
   w.formula_stack_.assign(std::max<std::size_t>(formula_stack_size_, 1), 0.0);
-  w.samples_.assign(static_cast<std::size_t>(max_resolution_), 0.0);
-  w.term_samples_.assign(static_cast<std::size_t>(max_resolution_), 0.0);
+  w.proposition_values_.assign(terms_.size() + hedged_propositions_.size(), 0.0);
+  w.samples_.assign(max_grid_size_, 0.0);
+  w.term_samples_.assign(max_grid_size_, 0.0);
+  w.implied_.assign(max_grid_size_, 0.0);
   return w;
+}
+
+// A Linear term: its coefficients times the input values, then its constant if it has one.
+[[gnu::always_inline]] inline double Evaluator::linear(const CompiledTerm& t,
+                                                       const Workspace& w) const {
+  const double* p = parameters_.data() + t.parameters;
+  const double* inputs = w.input_values_.data();
+  const std::size_t n = inputs_.size();
+  const std::size_t products = std::min<std::size_t>(n, t.count);
+  double result = 0.0;
+  for (std::size_t i = 0; i < products; ++i)
+    result += p[i] * inputs[i];
+  if (t.count > n) result += p[t.count - 1];
+  return result;
+}
+
+// The common linear shapes inline, every other through membership().
+[[gnu::always_inline]] inline double Evaluator::fuzzify(const CompiledTerm& t, double x,
+                                                        Workspace& w) const {
+  if (t.parameters_not_nan) {
+    const double* p = parameters_.data() + t.parameters;
+    switch (t.kind) {
+      case TermKind::Triangle:
+        return triangle(x, p, t.height);
+      case TermKind::Trapezoid:
+        return trapezoid(x, p, t.height);
+      case TermKind::Ramp:
+        return ramp(x, p, t.height);
+      default:
+        break;
+    }
+  }
+  return membership(t, x, w);
 }
 
 double Evaluator::membership(const CompiledTerm& t, double x, Workspace& w) const {
   const double* p = parameters_.data() + t.parameters;
   const double h = t.height;
+  if (t.parameters_not_nan) {
+    switch (t.kind) {
+      case TermKind::Triangle:
+        return triangle(x, p, h);
+      case TermKind::Trapezoid:
+        return trapezoid(x, p, h);
+      case TermKind::Ramp:
+        return ramp(x, p, h);
+      default:
+        break;
+    }
+  }
   switch (t.kind) {
     case TermKind::Bell:
       return shapes::bell(x, p[0], p[1], p[2], h);
@@ -227,7 +514,7 @@ double Evaluator::membership(const CompiledTerm& t, double x, Workspace& w) cons
       const CompiledFormula& f = formulas_[static_cast<std::size_t>(t.formula)];
       for (std::size_t i = 0; i < f.bindings.size(); ++i) {
         const std::int32_t b = f.bindings[i];
-        w.formula_values_[i] = b == kX   ? x
+        w.formula_values_[i] = b == kX  ? x
                                : b >= 0 ? w.input_values_[static_cast<std::size_t>(b)]
                                         : w.output_values_[static_cast<std::size_t>(-b - 1)];
       }
@@ -237,15 +524,8 @@ double Evaluator::membership(const CompiledTerm& t, double x, Workspace& w) cons
       return shapes::gaussian(x, p[0], p[1], h);
     case TermKind::GaussianProduct:
       return shapes::gaussian_product(x, p[0], p[1], p[2], p[3], h);
-    case TermKind::Linear: {
-      double result = 0.0;
-      const std::size_t n = inputs_.size();
-      for (std::size_t i = 0; i < n; ++i) {
-        if (i < t.count) result += p[i] * w.input_values_[i];
-      }
-      if (t.count > n) result += p[t.count - 1];
-      return result;
-    }
+    case TermKind::Linear:
+      return linear(t, w);
     case TermKind::PiShape:
       return shapes::pi_shape(x, p[0], p[1], p[2], p[3], h);
     case TermKind::Ramp:
@@ -326,42 +606,108 @@ double Evaluator::proposition(const CompiledProposition& p, Workspace& w) const 
   } else if (p.output) {
     result = fuzzy_output_degree(p.variable, p.term, w);
   } else {
-    result = membership(terms_[static_cast<std::size_t>(p.term)], w.input_values_[p.variable], w);
+    result = w.proposition_values_[static_cast<std::size_t>(p.term)];
   }
-  while (count > 0) result = apply(hedges[--count], result);
+  while (count > 0)
+    result = apply(hedges[--count], result);
   return result;
 }
 
 double Evaluator::antecedent(const CompiledRule& rule, const CompiledBlock& block,
                              Workspace& w) const {
+  const std::int32_t* code = antecedent_.data() + rule.antecedent;
+  const double* values = w.proposition_values_.data();
   double* stack = w.stack_.data();
   std::size_t top = 0;
-  const std::int32_t* code = antecedent_.data() + rule.antecedent;
   for (std::uint32_t i = 0; i < rule.antecedent_length; ++i) {
     const std::int32_t token = code[i];
     if (token >= 0) {
-      stack[top++] = proposition(propositions_[static_cast<std::size_t>(token)], w);
-    } else {
+      stack[top++] = values[token];
+    } else if (token == Rule::kAnd || token == Rule::kOr) {
       const double right = stack[--top];
       const double left = stack[top - 1];
-      stack[top - 1] = token == Rule::kAnd ? apply(block.conjunction, left, right)
-                                           : apply(block.disjunction, left, right);
+      stack[top - 1] = token == Rule::kAnd ? conjoin(block.conjunction, left, right)
+                                           : disjoin(block.disjunction, left, right);
+    } else {
+      stack[top++] =
+          proposition(propositions_[static_cast<std::size_t>(kOutputProposition - token)], w);
     }
   }
   return rule.weight * stack[0];
 }
 
-void Evaluator::trigger(const CompiledRule& rule, double degree, TNorm implication,
-                        Workspace& w) const {
-  if (!is_gt(degree, 0.0)) return;
-  for (std::uint32_t c = 0; c < rule.conclusion_count; ++c) {
-    const CompiledProposition& p = conclusions_[rule.conclusions + c];
-    if (!p.variable_enabled) continue;
+double Evaluator::activation_degree(const CompiledRule& rule, const CompiledBlock& block,
+                                    Workspace& w) const {
+  if (!rule.left_deep) return antecedent(rule, block, w);
+  const std::int32_t* code = antecedent_.data() + rule.antecedent;
+  const double* values = w.proposition_values_.data();
+  double degree = values[code[0]];
+  for (std::uint32_t i = 1; i < rule.antecedent_length; i += 2) {
+    const double value = values[code[i]];
+    degree = code[i + 1] == Rule::kAnd ? conjoin(block.conjunction, degree, value)
+                                       : disjoin(block.disjunction, degree, value);
+  }
+  return rule.weight * degree;
+}
+
+[[gnu::noinline]] double Evaluator::hedge(const CompiledProposition& p, double degree) const {
+  for (std::uint32_t h = p.hedge_count; h > 0; --h)
+    degree = apply(hedges_[p.hedges + h - 1], degree);
+  return degree;
+}
+
+// Hot paths are forced inline into the rule loops: a call per rule or conclusion would cost more
+// than the work.
+[[gnu::always_inline]] inline void Evaluator::trigger(const CompiledRule& rule, double degree,
+                                                      TNorm implication, Workspace& w) const {
+  if (!(degree >= kTolerance)) return;  // !is_gt(degree, 0.0), NaN included
+  const CompiledProposition* conclusion = conclusions_.data() + rule.conclusions;
+  const CompiledProposition* const end = conclusion + rule.conclusion_count;
+  for (; conclusion != end; ++conclusion) {
+    if (!conclusion->variable_enabled) continue;
     // fuzzylite hedges the degree in place, so a hedge also reaches later conclusions.
-    for (std::uint32_t h = p.hedge_count; h > 0; --h) degree = apply(hedges_[p.hedges + h - 1], degree);
-    const CompiledOutput& o = outputs_[p.variable];
-    w.activated_[o.activated_offset + w.activated_count_[p.variable]++] = {
-        static_cast<std::uint32_t>(p.term), degree, implication};
+    if (conclusion->hedge_count > 0) degree = hedge(*conclusion, degree);
+    const CompiledOutput& o = outputs_[conclusion->variable];
+    std::uint32_t& count = w.activated_count_[conclusion->variable];
+    if (o.eager) {
+      Workspace::WeightedSums& sums = w.weighted_sums_[conclusion->variable];
+      if (count == 0) sums = {0.0, 0.0};
+      const CompiledTerm& t = terms_[static_cast<std::size_t>(conclusion->term)];
+      // Constant and Linear are read alike by both kinds of weighted defuzzifier.
+      const double z = t.kind == TermKind::Constant ? parameters_[t.parameters]
+                       : t.kind == TermKind::Linear ? linear(t, w)
+                                                    : weighted_value(o, t, degree, w);
+      sums.sum += degree * z;
+      sums.weights += degree;
+    } else {
+      w.activated_[o.activated_offset + count] = {static_cast<std::uint32_t>(conclusion->term),
+                                                  degree, implication};
+    }
+    ++count;
+  }
+}
+
+// General activation, fuzzylite's default: every rule fires with its activation degree.
+[[gnu::always_inline]] inline void Evaluator::activate_general(const CompiledBlock& block,
+                                                               Workspace& w) const {
+  const CompiledRule* rules = rules_.data() + block.first_rule;
+  const std::uint32_t n = block.rule_count;
+  for (const CompiledRule* rule = rules; rule != rules + n; ++rule) {
+    double degree;
+    if (rule->left_deep) {  // activation_degree() inline, for the common antecedents
+      const std::int32_t* code = antecedent_.data() + rule->antecedent;
+      const double* values = w.proposition_values_.data();
+      degree = values[code[0]];
+      for (std::uint32_t i = 1; i < rule->antecedent_length; i += 2) {
+        const double value = values[code[i]];
+        degree = code[i + 1] == Rule::kAnd ? conjoin(block.conjunction, degree, value)
+                                           : disjoin(block.disjunction, degree, value);
+      }
+      degree *= rule->weight;
+    } else {
+      degree = antecedent(*rule, block, w);
+    }
+    trigger(*rule, degree, block.implication, w);
   }
 }
 
@@ -373,22 +719,21 @@ void Evaluator::activate(const CompiledBlock& block, Workspace& w) const {
   switch (a.kind) {
     case Activation::Kind::None:
     case Activation::Kind::General:
-      for (std::uint32_t r = 0; r < n; ++r) {
-        trigger(rules[r], antecedent(rules[r], block, w), block.implication, w);
-      }
+      activate_general(block, w);
       return;
     case Activation::Kind::Proportional: {
       double sum = 0.0;
       for (std::uint32_t r = 0; r < n; ++r) {
-        degrees[r] = antecedent(rules[r], block, w);
+        degrees[r] = activation_degree(rules[r], block, w);
         sum += degrees[r];
       }
-      for (std::uint32_t r = 0; r < n; ++r) trigger(rules[r], degrees[r] / sum, block.implication, w);
+      for (std::uint32_t r = 0; r < n; ++r)
+        trigger(rules[r], degrees[r] / sum, block.implication, w);
       return;
     }
     case Activation::Kind::Threshold:
       for (std::uint32_t r = 0; r < n; ++r) {
-        const double d = antecedent(rules[r], block, w);
+        const double d = activation_degree(rules[r], block, w);
         if (activates(a, d)) trigger(rules[r], d, block.implication, w);
       }
       return;
@@ -397,7 +742,7 @@ void Evaluator::activate(const CompiledBlock& block, Workspace& w) const {
       int activated = 0;
       for (std::uint32_t i = 0; i < n; ++i) {
         const std::uint32_t r = a.kind == Activation::Kind::First ? i : n - 1 - i;
-        const double d = antecedent(rules[r], block, w);
+        const double d = activation_degree(rules[r], block, w);
         if (activated < a.number_of_rules && is_gt(d, 0.0) && is_ge(d, a.threshold)) {
           trigger(rules[r], d, block.implication, w);
           ++activated;
@@ -415,7 +760,7 @@ void Evaluator::activate(const CompiledBlock& block, Workspace& w) const {
       std::uint32_t* heap = w.heap_.data();
       std::uint32_t size = 0;
       for (std::uint32_t r = 0; r < n; ++r) {
-        degrees[r] = antecedent(rules[r], block, w);
+        degrees[r] = activation_degree(rules[r], block, w);
         if (is_gt(degrees[r], 0.0)) {
           heap[size++] = r;
           std::push_heap(heap, heap + size, before);
@@ -433,111 +778,185 @@ void Evaluator::activate(const CompiledBlock& block, Workspace& w) const {
   }
 }
 
-void Evaluator::sample_aggregate(const CompiledOutput& o, double minimum, double dx,
-                                 int resolution, Workspace& w) const {
+// mu over the output's grid: every activated term, in order, through its implication and the
+// aggregation, as fuzzylite's Aggregated::membership computes it at each sample. Returns the
+// samples outside which mu is zero; only those inside are written.
+//
+// While every term and degree so far was finite and >= 0, mu is too, and with Minimum or
+// AlgebraicProduct implication and Maximum aggregation a term changes mu only where the term is
+// not zero: elsewhere mu = max(mu, +-0) keeps its value, at most turning +0 into -0, which no
+// defuzzifier tells apart. So such terms only visit their own samples.
+Evaluator::Aggregate Evaluator::aggregate(const CompiledOutput& o, bool defer_last,
+                                          Workspace& w) const {
+  const std::size_t n = o.grid_size;
+  const double* x = grid_x_.data() + o.grid;
   double* mu = w.samples_.data();
-  double* y = w.term_samples_.data();
-  std::fill(mu, mu + resolution, 0.0);
+  std::size_t first = 0;  // [first, last) holds every sample written so far
+  std::size_t last = 0;
+  bool sparse = true;  // mu is finite and >= 0, and zero outside [first, last)
   const Workspace::Activated* activated = w.activated_.data() + o.activated_offset;
-  const std::uint32_t count = w.activated_count_[&o - outputs_.data()];
+  const std::uint32_t count = w.activated_count_[static_cast<std::size_t>(&o - outputs_.data())];
   for (std::uint32_t k = 0; k < count; ++k) {
     const CompiledTerm& t = terms_[activated[k].term];
-    const double* p = parameters_.data() + t.parameters;
-    const double h = t.height;
-    switch (t.kind) {
-      case TermKind::Triangle:
-        sample(minimum, dx, resolution, y,
-               [&](double x) { return shapes::triangle(x, p[0], p[1], p[2], h); });
-        break;
-      case TermKind::Trapezoid:
-        sample(minimum, dx, resolution, y,
-               [&](double x) { return shapes::trapezoid(x, p[0], p[1], p[2], p[3], h); });
-        break;
-      case TermKind::Gaussian:
-        sample(minimum, dx, resolution, y,
-               [&](double x) { return shapes::gaussian(x, p[0], p[1], h); });
-        break;
-      case TermKind::Bell:
-        sample(minimum, dx, resolution, y,
-               [&](double x) { return shapes::bell(x, p[0], p[1], p[2], h); });
-        break;
-      default:
-        sample(minimum, dx, resolution, y, [&](double x) { return membership(t, x, w); });
-        break;
-    }
     const double degree = activated[k].degree;
     const TNorm implication = activated[k].implication;
-    const SNorm aggregation = o.aggregation;
-    if (implication == TNorm::Minimum && aggregation == SNorm::Maximum) {
-      for (int i = 0; i < resolution; ++i) mu[i] = nan_max(mu[i], nan_min(y[i], degree));
-    } else if (implication == TNorm::AlgebraicProduct && aggregation == SNorm::Maximum) {
-      for (int i = 0; i < resolution; ++i) mu[i] = nan_max(mu[i], y[i] * degree);
-    } else {
-      for (int i = 0; i < resolution; ++i) {
-        mu[i] = apply(aggregation, mu[i], apply(implication, y[i], degree));
+    const bool max_of_implied =
+        o.aggregation == SNorm::Maximum &&
+        (implication == TNorm::Minimum || implication == TNorm::AlgebraicProduct);
+    if (sparse && max_of_implied && t.grid_values_nonnegative && std::isfinite(degree) &&
+        degree >= 0.0) {
+      const std::size_t term_first = t.grid_first;
+      const std::size_t term_last = t.grid_last;
+      if (term_first == term_last) continue;
+      if (first == last) {
+        std::fill(mu + term_first, mu + term_last, 0.0);
+        first = term_first;
+        last = term_last;
+      } else {
+        if (term_first < first) std::fill(mu + term_first, mu + first, 0.0);
+        if (term_last > last) std::fill(mu + last, mu + term_last, 0.0);
+        first = std::min(first, term_first);
+        last = std::max(last, term_last);
       }
+      const double* y = grid_values_.data() + t.grid_values;
+      if (defer_last && k + 1 == count) return {first, last, y, degree, implication};
+      if (implication == TNorm::Minimum) {
+        for (std::size_t i = term_first; i < term_last; ++i) {
+          const double implied = y[i] < degree ? y[i] : degree;
+          mu[i] = mu[i] > implied ? mu[i] : implied;
+        }
+      } else {
+        for (std::size_t i = term_first; i < term_last; ++i) {
+          const double implied = y[i] * degree;
+          mu[i] = mu[i] > implied ? mu[i] : implied;
+        }
+      }
+      continue;
+    }
+    if (sparse) {  // from here on, every sample
+      std::fill(mu, mu + first, 0.0);
+      std::fill(mu + last, mu + n, 0.0);
+      if (first == last) std::fill(mu, mu + n, 0.0);
+      first = 0;
+      last = n;
+      sparse = false;
+    }
+    const double* y = grid_values_.data() + t.grid_values;
+    bool y_finite = t.grid_values_finite;
+    if (t.grid_values < 0) {
+      double* sampled = w.term_samples_.data();
+      for (std::size_t i = 0; i < n; ++i)
+        sampled[i] = membership(t, x[i], w);
+      y = sampled;
+      y_finite = false;
+    }
+    // Selects the compiler vectorises: when b is not NaN, nan_min(a, b) is a < b ? a : b and
+    // nan_max(a, b) is a > b ? a : b. Minimum with a degree that is not NaN, or the product of
+    // finite values, never gives NaN.
+    if (implication == TNorm::Minimum && o.aggregation == SNorm::Maximum && !std::isnan(degree)) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const double implied = y[i] < degree ? y[i] : degree;
+        mu[i] = mu[i] > implied ? mu[i] : implied;
+      }
+    } else if (implication == TNorm::AlgebraicProduct && o.aggregation == SNorm::Maximum &&
+               y_finite && std::isfinite(degree)) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const double implied = y[i] * degree;
+        mu[i] = mu[i] > implied ? mu[i] : implied;
+      }
+    } else {
+      imply(implication, y, degree, n, w.implied_.data());
+      accumulate(o.aggregation, w.implied_.data(), n, mu);
     }
   }
+  return {first, last};
 }
 
 double Evaluator::integral(const CompiledOutput& o, Workspace& w) const {
-  const double minimum = o.minimum;
-  const double maximum = o.maximum;
-  if (!std::isfinite(minimum + maximum)) return kNaN;
+  if (o.grid < 0) return kNaN;  // the range is not finite
+  const bool centroid = o.defuzzifier.kind == Defuzzifier::Kind::Centroid;
+  const Aggregate nonzero = aggregate(o, centroid, w);
+  double* mu = w.samples_.data();
+  const double* x = grid_x_.data() + o.grid;
   const int resolution = o.defuzzifier.resolution;
-  const double dx = (maximum - minimum) / resolution;
-  if (o.defuzzifier.kind == Defuzzifier::Kind::Bisector) {
-    // Samples from both ends towards the middle: x values differ from the uniform grid.
-    const Workspace::Activated* activated = w.activated_.data() + o.activated_offset;
-    const std::uint32_t count = w.activated_count_[&o - outputs_.data()];
-    auto aggregated = [&](double x) {
-      double mu = 0.0;
-      for (std::uint32_t k = 0; k < count; ++k) {
-        mu = apply(o.aggregation, mu,
-                   apply(activated[k].implication, membership(terms_[activated[k].term], x, w),
-                         activated[k].degree));
-      }
-      return mu;
-    };
-    int counter = resolution;
-    int left = 0;
-    int right = 0;
-    double left_area = 0.0;
-    double right_area = 0.0;
-    double x_left = minimum;
-    double x_right = maximum;
-    while (counter-- > 0) {
-      if (is_le(left_area, right_area)) {
-        x_left = minimum + (left + 0.5) * dx;
-        left_area += aggregated(x_left);
-        ++left;
-      } else {
-        x_right = maximum - (right + 0.5) * dx;
-        right_area += aggregated(x_right);
-        ++right;
-      }
-    }
-    return (left_area * x_right + right_area * x_left) / (left_area + right_area);
+  if (!centroid) {  // they read every sample
+    std::fill(mu, mu + nonzero.first, 0.0);
+    std::fill(mu + nonzero.last, mu + o.grid_size, 0.0);
+    if (nonzero.first == nonzero.last) std::fill(mu, mu + o.grid_size, 0.0);
   }
-  sample_aggregate(o, minimum, dx, resolution, w);
-  const double* mu = w.samples_.data();
   switch (o.defuzzifier.kind) {
+    case Defuzzifier::Kind::Bisector: {
+      // Samples from both ends towards the middle: the right end has its own grid.
+      const double* mu_right = mu + resolution;
+      const double* x_right_grid = x + resolution;
+      int counter = resolution;
+      int left = 0;
+      int right = 0;
+      double left_area = 0.0;
+      double right_area = 0.0;
+      double x_left = o.minimum;
+      double x_right = o.maximum;
+      while (counter-- > 0) {
+        if (is_le(left_area, right_area)) {
+          x_left = x[left];
+          left_area += mu[left];
+          ++left;
+        } else {
+          x_right = x_right_grid[right];
+          right_area += mu_right[right];
+          ++right;
+        }
+      }
+      return (left_area * x_right + right_area * x_left) / (left_area + right_area);
+    }
     case Defuzzifier::Kind::Centroid: {
+      // The sums stay sequential, in fuzzylite's order. Samples where mu is exactly zero add
+      // nothing (x is finite, and sums that start at +0 never round to -0), so the zero ends of
+      // the aggregate are skipped.
+      std::size_t first = nonzero.first;
+      std::size_t last = nonzero.last;
       double area = 0.0;
       double x_centroid = 0.0;
-      for (int i = 0; i < resolution; ++i) {
-        const double x = minimum + (i + 0.5) * dx;
-        x_centroid += mu[i] * x;
+      if (nonzero.deferred != nullptr) {
+        // The last term's implication and aggregation fill the wait on the sums' additions.
+        const double* y = nonzero.deferred;
+        const double degree = nonzero.deferred_degree;
+        if (nonzero.deferred_implication == TNorm::Minimum) {
+          for (std::size_t i = first; i < last; ++i) {
+            const double implied = y[i] < degree ? y[i] : degree;
+            const double aggregated = mu[i] > implied ? mu[i] : implied;
+            x_centroid += aggregated * x[i];
+            area += aggregated;
+          }
+        } else {
+          for (std::size_t i = first; i < last; ++i) {
+            const double implied = y[i] * degree;
+            const double aggregated = mu[i] > implied ? mu[i] : implied;
+            x_centroid += aggregated * x[i];
+            area += aggregated;
+          }
+        }
+        return x_centroid / area;
+      }
+      while (first < last && mu[first] == 0.0) ++first;
+      while (last > first && mu[last - 1] == 0.0) --last;
+      for (std::size_t i = first; i < last; ++i) {
+        x_centroid += mu[i] * x[i];
         area += mu[i];
       }
       return x_centroid / area;
     }
+    // y_max is never NaN (it starts at -1 and takes only values that compared greater), so
+    // the tolerant comparisons of mu with it reduce as for the linear shapes:
+    // is_gt(m, y_max) is m - y_max >= kTolerance, is_lt(m, y_max) is y_max - m >= kTolerance,
+    // is_eq(m, y_max) is |m - y_max| < kTolerance || m == y_max, and is_ge is its negation of
+    // is_lt with m == y_max for infinities; a NaN m fails them all, as in fuzzylite.
     case Defuzzifier::Kind::SmallestOfMaximum: {
       double y_max = -1.0;
-      double x_smallest = minimum;
+      double x_smallest = o.minimum;
       for (int i = 0; i < resolution; ++i) {
-        if (is_gt(mu[i], y_max)) {
-          x_smallest = minimum + (i + 0.5) * dx;
+        if (mu[i] - y_max >= kTolerance) {
+          x_smallest = x[i];
           y_max = mu[i];
         }
       }
@@ -545,30 +964,30 @@ double Evaluator::integral(const CompiledOutput& o, Workspace& w) const {
     }
     case Defuzzifier::Kind::LargestOfMaximum: {
       double y_max = -1.0;
-      double x_largest = maximum;
+      double x_largest = o.maximum;
       for (int i = 0; i < resolution; ++i) {
-        if (is_ge(mu[i], y_max)) {
+        if (y_max - mu[i] < kTolerance || mu[i] == y_max) {
           y_max = mu[i];
-          x_largest = minimum + (i + 0.5) * dx;
+          x_largest = x[i];
         }
       }
       return x_largest;
     }
     case Defuzzifier::Kind::MeanOfMaximum: {
       double y_max = -1.0;
-      double x_smallest = minimum;
-      double x_largest = maximum;
+      double x_smallest = o.minimum;
+      double x_largest = o.maximum;
       bool same_plateau = false;
       for (int i = 0; i < resolution; ++i) {
-        const double x = minimum + (i + 0.5) * dx;
-        if (is_gt(mu[i], y_max)) {
+        const double difference = mu[i] - y_max;
+        if (difference >= kTolerance) {
           y_max = mu[i];
-          x_smallest = x;
-          x_largest = x;
+          x_smallest = x[i];
+          x_largest = x[i];
           same_plateau = true;
-        } else if (same_plateau && is_eq(mu[i], y_max)) {
-          x_largest = x;
-        } else if (is_lt(mu[i], y_max)) {
+        } else if (same_plateau && (std::abs(difference) < kTolerance || mu[i] == y_max)) {
+          x_largest = x[i];
+        } else if (y_max - mu[i] >= kTolerance) {
           same_plateau = false;
         }
       }
@@ -579,31 +998,35 @@ double Evaluator::integral(const CompiledOutput& o, Workspace& w) const {
   }
 }
 
-double Evaluator::weighted(const CompiledOutput& o, Workspace& w) const {
-  const Workspace::Activated* activated = w.activated_.data() + o.activated_offset;
-  const std::uint32_t count = w.activated_count_[&o - outputs_.data()];
-  Defuzzifier::WeightedType type = o.defuzzifier.type;
-  if (type == Defuzzifier::WeightedType::Automatic) {
-    type = takagi_sugeno_kind(terms_[activated[0].term].kind)
-               ? Defuzzifier::WeightedType::TakagiSugeno
-               : Defuzzifier::WeightedType::Tsukamoto;
+// z of an activated term for the weighted defuzzifiers. Automatic reads every term as
+// Tsukamoto does, as fuzzylite 6 does in effect: it infers the type from the first Activated
+// wrapper, never a Constant, Linear or Function itself (WeightedAverage::defuzzify,
+// WeightedSum::defuzzify). For those terms it is the same value.
+[[gnu::noinline]] double Evaluator::weighted_value(const CompiledOutput& o, const CompiledTerm& t,
+                                                   double degree, Workspace& w) const {
+  if (t.kind == TermKind::Constant) return parameters_[t.parameters];  // in both readings
+  if (o.defuzzifier.type == Defuzzifier::WeightedType::TakagiSugeno) {
+    return membership(t, degree, w);
   }
+  return tsukamoto(t, degree, o.minimum, o.maximum, w);
+}
+
+double Evaluator::weighted(const CompiledOutput& o, Workspace& w) const {
   const bool average = o.defuzzifier.kind == Defuzzifier::Kind::WeightedAverage;
+  const auto output = static_cast<std::size_t>(&o - outputs_.data());
+  const Workspace::Activated* activated = w.activated_.data() + o.activated_offset;
+  const std::uint32_t count = w.activated_count_[output];
   double sum = 0.0;
   double weights = 0.0;
   for (std::uint32_t k = 0; k < count; ++k) {
     const double degree = activated[k].degree;
-    const CompiledTerm& t = terms_[activated[k].term];
-    const double z = type == Defuzzifier::WeightedType::TakagiSugeno
-                         ? membership(t, degree, w)
-                         : tsukamoto(t, degree, o.minimum, o.maximum, w);
-    sum += degree * z;
+    sum += degree * weighted_value(o, terms_[activated[k].term], degree, w);
     if (average) weights += degree;
   }
   return average ? sum / weights : sum;
 }
 
-void Evaluator::defuzzify(std::uint32_t output, Workspace& w) const {
+[[gnu::always_inline]] inline void Evaluator::defuzzify(std::uint32_t output, Workspace& w) const {
   const CompiledOutput& o = outputs_[output];
   if (!o.enabled) return;
   double& value = w.output_values_[output];
@@ -611,7 +1034,13 @@ void Evaluator::defuzzify(std::uint32_t output, Workspace& w) const {
   if (std::isfinite(value)) previous = value;
   double result;
   if (w.activated_count_[output] > 0) {
-    result = o.defuzzifier.is_integral() ? integral(o, w) : weighted(o, w);
+    if (o.eager) {
+      const Workspace::WeightedSums& sums = w.weighted_sums_[output];
+      result = o.defuzzifier.kind == Defuzzifier::Kind::WeightedAverage ? sums.sum / sums.weights
+                                                                        : sums.sum;
+    } else {
+      result = o.defuzzifier.is_integral() ? integral(o, w) : weighted(o, w);
+    }
   } else {
     result = (o.lock_previous && !std::isnan(previous)) ? previous : o.default_value;
   }
@@ -624,13 +1053,38 @@ void Evaluator::evaluate(std::span<const double> inputs, std::span<double> outpu
     const CompiledInput& v = inputs_[i];
     w.input_values_[i] = v.lock_range ? bound(inputs[i], v.minimum, v.maximum) : inputs[i];
   }
-  std::fill(w.activated_count_.begin(), w.activated_count_.end(), 0u);
+  // Inputs, and so their terms' memberships, stay fixed while the rule blocks activate.
+  for (std::uint32_t t : fuzzified_terms_) {
+    const CompiledTerm& term = terms_[t];
+    w.proposition_values_[t] = fuzzify(term, w.input_values_[term.variable], w);
+  }
+  std::size_t slot = terms_.size();
+  for (std::uint32_t index : hedged_propositions_) {
+    const CompiledProposition& p = propositions_[index];
+    const Hedge* hedges = hedges_.data() + p.hedges;
+    double value;
+    if (p.variable_enabled && hedges[p.hedge_count - 1] != Hedge::Any) {  // proposition() inline
+      value = w.proposition_values_[static_cast<std::size_t>(p.term)];
+      for (std::uint32_t h = p.hedge_count; h > 0; --h)
+        value = apply(hedges[h - 1], value);
+    } else {
+      value = proposition(p, w);
+    }
+    w.proposition_values_[slot++] = value;
+  }
   for (const CompiledBlock& block : blocks_) {
-    if (block.enabled) activate(block, w);
+    if (!block.enabled) continue;
+    const Activation::Kind kind = block.activation.kind;
+    if (kind == Activation::Kind::General || kind == Activation::Kind::None) {
+      activate_general(block, w);
+    } else {
+      activate(block, w);
+    }
   }
   for (std::size_t o = 0; o < outputs_.size(); ++o) {
     defuzzify(static_cast<std::uint32_t>(o), w);
     outputs[o] = w.output_values_[o];
+    w.activated_count_[o] = 0;  // empty for the next evaluation (make_workspace starts empty)
   }
 }
 
@@ -638,8 +1092,8 @@ void Evaluator::evaluate_batch(std::span<const double> inputs, std::span<double>
                                Workspace& w) const {
   const std::size_t n_in = inputs_.size();
   const std::size_t n_out = outputs_.size();
-  const std::size_t rows = n_in == 0 ? outputs.size() / std::max<std::size_t>(n_out, 1)
-                                     : inputs.size() / n_in;
+  const std::size_t rows =
+      n_in == 0 ? outputs.size() / std::max<std::size_t>(n_out, 1) : inputs.size() / n_in;
   for (std::size_t r = 0; r < rows; ++r) {
     evaluate(inputs.subspan(r * n_in, n_in), outputs.subspan(r * n_out, n_out), w);
   }

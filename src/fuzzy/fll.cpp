@@ -1,8 +1,12 @@
 #include "fuzzygait/fuzzy/fll.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <unordered_set>
+
+#include "fuzzygait/fuzzy/formula.hpp"
 
 namespace fuzzygait::fuzzy {
 namespace {
@@ -60,6 +64,11 @@ class Reader {
       ++number;
       line = trim(line.substr(0, line.find('#')));
       if (line.empty()) continue;
+      // A '\r' that does not end the line would end up inside a name or a description, which
+      // no FLL file can hold: refuse it rather than guess what was meant.
+      if (line.find('\r') != std::string_view::npos) {
+        fail(number, "carriage return inside the line (lines end with '\\n' or '\\r\\n')");
+      }
       const std::size_t colon = line.find(':');
       if (colon == std::string_view::npos) {
         fail(number, "expected 'key: value', found '" + std::string(line) + "'");
@@ -117,6 +126,11 @@ class Reader {
       fail(e.line, what + " name '" + e.value +
                        "' must be letters, digits, '_' or '.', and not empty");
     }
+    // Rules read 'and' and 'or' as connectives, so no rule could name such a variable, and the
+    // rule parser would take every connective for it.
+    if (e.value == "and" || e.value == "or") {
+      fail(e.line, what + " name '" + e.value + "' is a rule connective ('and', 'or')");
+    }
     return e.value;
   }
 
@@ -127,23 +141,23 @@ class Reader {
     maximum = scalar(e, w[1], "range maximum");
   }
 
-  void unique_variable(const Entry& e, const std::string& variable) const {
-    if (engine_.find_input(variable) || engine_.find_output(variable)) {
+  // Name sets rather than scans of the engine, so that large files read in linear time.
+  void unique_variable(const Entry& e, const std::string& variable) {
+    if (!variable_names_.insert(variable).second) {
       fail(e.line, "variable '" + variable + "' is defined twice");
     }
   }
 
-  Term term(const Entry& e, const std::vector<Term>& existing, const std::string& variable) const {
+  Term term(const Entry& e, std::unordered_set<std::string>& existing,
+            const std::string& variable) const {
     const std::vector<std::string_view> w = words(e.value);
     if (w.size() < 2) fail(e.line, "a term needs 'name Shape parameters', found '" + e.value + "'");
     const std::string term_name(w[0]);
     if (!valid_name(term_name)) {
       fail(e.line, "term name '" + term_name + "' must be letters, digits, '_' or '.'");
     }
-    for (const Term& t : existing) {
-      if (t.name == term_name) {
-        fail(e.line, "term '" + term_name + "' is defined twice in '" + variable + "'");
-      }
+    if (!existing.insert(term_name).second) {
+      fail(e.line, "term '" + term_name + "' is defined twice in '" + variable + "'");
     }
     const std::optional<TermKind> kind = term_kind_from_name(w[1]);
     if (!kind) fail(e.line, "unknown term shape '" + std::string(w[1]) + "'");
@@ -170,6 +184,7 @@ class Reader {
 
   void input(const std::vector<Entry>& block) {
     InputVariable v;
+    std::unordered_set<std::string> term_names;
     v.name = name(block.front(), "input variable");
     unique_variable(block.front(), v.name);
     for (std::size_t i = 1; i < block.size(); ++i) {
@@ -183,7 +198,7 @@ class Reader {
       } else if (e.key == "lock-range") {
         v.lock_range = boolean(e);
       } else if (e.key == "term") {
-        v.terms.push_back(term(e, v.terms, v.name));
+        v.terms.push_back(term(e, term_names, v.name));
       } else {
         fail(e.line, "unknown key '" + e.key + "' in InputVariable '" + v.name + "'");
       }
@@ -193,6 +208,7 @@ class Reader {
 
   void output(const std::vector<Entry>& block) {
     OutputVariable v;
+    std::unordered_set<std::string> term_names;
     v.name = name(block.front(), "output variable");
     unique_variable(block.front(), v.name);
     for (std::size_t i = 1; i < block.size(); ++i) {
@@ -216,7 +232,7 @@ class Reader {
       } else if (e.key == "defuzzifier") {
         v.defuzzifier = defuzzifier(e);
       } else if (e.key == "term") {
-        v.terms.push_back(term(e, v.terms, v.name));
+        v.terms.push_back(term(e, term_names, v.name));
       } else {
         fail(e.line, "unknown key '" + e.key + "' in OutputVariable '" + v.name + "'");
       }
@@ -236,7 +252,11 @@ class Reader {
     if (w.size() == 2) {
       if (d.is_integral()) {
         d.resolution = count(e, w[1], "defuzzifier resolution");
-        if (d.resolution < 1) fail(e.line, "defuzzifier resolution must be at least 1");
+        if (d.resolution < 1 || d.resolution > Defuzzifier::kMaxResolution) {
+          fail(e.line, "defuzzifier resolution must be from 1 to " +
+                           std::to_string(Defuzzifier::kMaxResolution) + ", found '" +
+                           std::string(w[1]) + "'");
+        }
       } else {
         const std::optional<Defuzzifier::WeightedType> type = weighted_type_from_name(w[1]);
         if (!type) {
@@ -338,6 +358,7 @@ class Reader {
 
   std::string source_;
   Engine engine_;
+  std::unordered_set<std::string> variable_names_;
 };
 
 void check_line(const std::string& text, const std::string& what) {
@@ -349,6 +370,23 @@ void check_line(const std::string& text, const std::string& what) {
 
 std::string range_text(double minimum, double maximum) {
   return format_scalar(minimum) + " " + format_scalar(maximum);
+}
+
+// The other variables that a variable's Function terms read.
+std::vector<std::string> formula_reads(const std::string& variable,
+                                       const std::vector<Term>& terms) {
+  std::vector<std::string> out;
+  for (const Term& t : terms) {
+    if (t.kind != TermKind::Function) continue;
+    try {
+      for (const std::string& symbol : compile_formula(t.formula).variables) {
+        if (symbol != variable) out.push_back(symbol);
+      }
+    } catch (const std::invalid_argument&) {
+      // An unparsable formula reads nothing; the reader reports it.
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -401,11 +439,11 @@ std::string write_fll(const Engine& engine) {
     out << "  range: " << range_text(minimum, maximum) << "\n";
     out << "  lock-range: " << (lock_range ? "true" : "false") << "\n";
   };
-  for (const InputVariable& v : engine.inputs) {
+  auto input = [&](const InputVariable& v) {
     header("InputVariable", v.name, v.description, v.enabled, v.minimum, v.maximum, v.lock_range);
     terms(v.terms);
-  }
-  for (const OutputVariable& v : engine.outputs) {
+  };
+  auto output = [&](const OutputVariable& v) {
     header("OutputVariable", v.name, v.description, v.enabled, v.minimum, v.maximum,
            v.lock_range);
     out << "  aggregation: " << name(v.aggregation) << "\n";
@@ -421,6 +459,35 @@ std::string write_fll(const Engine& engine) {
     out << "  default: " << format_scalar(v.default_value) << "\n";
     out << "  lock-previous: " << (v.lock_previous ? "true" : "false") << "\n";
     terms(v.terms);
+  };
+  // fuzzylite resolves a Function term's variables as it reads the term, so a variable goes after
+  // the variables its formulas read (when no cycle forbids it); inputs keep their order, and so
+  // do outputs.
+  std::vector<std::string> written;
+  auto ready = [&](const std::string& variable, const std::vector<Term>& list) {
+    for (const std::string& symbol : formula_reads(variable, list)) {
+      const bool known = engine.find_input(symbol) || engine.find_output(symbol);
+      if (known && std::find(written.begin(), written.end(), symbol) == written.end()) {
+        return false;
+      }
+    }
+    return true;
+  };
+  std::size_t next_input = 0;
+  std::size_t next_output = 0;
+  while (next_input < engine.inputs.size() || next_output < engine.outputs.size()) {
+    const bool inputs_left = next_input < engine.inputs.size();
+    const bool output_ready =
+        next_output < engine.outputs.size() &&
+        ready(engine.outputs[next_output].name, engine.outputs[next_output].terms);
+    if (inputs_left && (ready(engine.inputs[next_input].name, engine.inputs[next_input].terms) ||
+                        !output_ready)) {
+      input(engine.inputs[next_input]);
+      written.push_back(engine.inputs[next_input++].name);
+    } else {
+      output(engine.outputs[next_output]);
+      written.push_back(engine.outputs[next_output++].name);
+    }
   }
   for (const RuleBlock& b : engine.rule_blocks) {
     check_line(b.name, "rule block name");

@@ -193,14 +193,16 @@ Term make_term(std::string name, TermKind kind, std::string_view parameter_text)
         term.height = values.back();
         values.pop_back();
       }
-      for (std::size_t i = 2; i < values.size(); i += 2) {
-        if (values[i] < values[i - 2]) {
+      for (std::size_t i = 0; i < values.size(); i += 2) {
+        // Every x, a lone point's too: the shape's binary search needs ordered coordinates.
+        if (std::isnan(values[i])) {
+          throw std::invalid_argument(label + ": x" + std::to_string(i / 2) +
+                                      " is nan; point x coordinates must be numbers");
+        }
+        if (i >= 2 && values[i] < values[i - 2]) {
           throw std::invalid_argument(label + ": points must be sorted by x, but x" +
                                       std::to_string(i / 2) + " = " + format_scalar(values[i]) +
                                       " comes after " + format_scalar(values[i - 2]));
-        }
-        if (std::isnan(values[i]) || std::isnan(values[i - 2])) {
-          throw std::invalid_argument(label + ": point x coordinates must be numbers, not nan");
         }
       }
       term.parameters = std::move(values);

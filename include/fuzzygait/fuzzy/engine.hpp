@@ -44,6 +44,10 @@ struct Defuzzifier {
   // How a weighted defuzzifier reads a term: Automatic infers it from the first activated term.
   enum class WeightedType : std::uint8_t { Automatic, TakagiSugeno, Tsukamoto };
 
+  // Most samples an integral defuzzifier takes: each evaluation costs resolution times the
+  // activated terms, and the workspace holds two arrays of this size.
+  static constexpr int kMaxResolution = 1'000'000;
+
   Kind kind = Kind::Centroid;
   int resolution = 100;  // samples across the range, integral defuzzifiers
   WeightedType type = WeightedType::Automatic;

@@ -37,18 +37,27 @@ class Workspace {
     double degree;
     TNorm implication;
   };
+  struct WeightedSums {  // a weighted defuzzifier's sums, accumulated as its rules fire
+    double sum;
+    double weights;
+  };
   std::vector<double> input_values_;
   std::vector<double> output_values_;
   std::vector<double> previous_values_;
-  std::vector<Activated> activated_;          // per output, a slice of capacity entries
-  std::vector<std::uint32_t> activated_count_;
+  std::vector<Activated> activated_;            // per output, a slice of capacity entries
+  std::vector<std::uint32_t> activated_count_;  // per output, also of eager ones
+  std::vector<WeightedSums> weighted_sums_;     // per output, eager ones
   std::vector<double> rule_degrees_;
   std::vector<std::uint32_t> heap_;
   std::vector<double> stack_;
   std::vector<double> formula_values_;
   std::vector<double> formula_stack_;
-  std::vector<double> samples_;               // integral defuzzifiers: aggregated membership
-  std::vector<double> term_samples_;
+  // Fixed while rules fire: memberships of the input terms (by term index), then the values of
+  // input propositions with hedges.
+  std::vector<double> proposition_values_;
+  std::vector<double> samples_;       // integral defuzzifiers: aggregated membership
+  std::vector<double> term_samples_;  // one term sampled during evaluation (reads variables)
+  std::vector<double> implied_;       // one activated term after its implication
 };
 
 class Evaluator {
@@ -88,9 +97,18 @@ class Evaluator {
  private:
   struct CompiledTerm {
     TermKind kind;
-    std::uint32_t parameters;   // offset into parameters_
-    std::uint32_t count;        // number of parameters (Discrete: points)
-    std::int32_t formula = -1;  // index into formulas_
+    std::uint32_t variable;           // index of its input or output variable
+    std::uint32_t parameters;         // offset into parameters_
+    std::uint32_t count;              // number of parameters (Discrete: points)
+    std::int32_t formula = -1;        // index into formulas_
+    bool parameters_not_nan = false;  // allows the shortcut comparisons of the linear shapes
+    // Output terms that depend on x alone are sampled once over their variable's grid:
+    // offset into grid_values_, or -1 when sampled during evaluation.
+    std::int32_t grid_values = -1;
+    bool grid_values_finite = false;
+    bool grid_values_nonnegative = false;  // finite and >= 0
+    std::uint32_t grid_first = 0;          // the samples outside [grid_first, grid_last) are zero
+    std::uint32_t grid_last = 0;
     double height;
   };
   struct CompiledFormula {
@@ -120,6 +138,13 @@ class Evaluator {
     std::uint32_t first_term;
     std::uint32_t term_count;
     std::uint32_t activated_offset;  // slice of Workspace::activated_
+    // A weighted defuzzifier whose terms read no output and which no rule reads: each
+    // activated term adds to its sums at once (the same order), no Activated list.
+    bool eager = false;
+    // Integral defuzzifiers over a finite range: offset into grid_x_ of the sample positions
+    // (Bisector: the grid from the left end, then the one from the right end), or -1.
+    std::int32_t grid = -1;
+    std::uint32_t grid_size = 0;
   };
   struct CompiledProposition {
     std::uint32_t variable;
@@ -130,10 +155,11 @@ class Evaluator {
     std::uint32_t hedge_count;
   };
   struct CompiledRule {
-    std::uint32_t antecedent;  // offset into antecedent_ (postfix: >= 0 proposition, -1 and, -2 or)
+    std::uint32_t antecedent;  // offset into antecedent_
     std::uint32_t antecedent_length;
     std::uint32_t conclusions;  // offset into conclusions_ (propositions)
     std::uint32_t conclusion_count;
+    bool left_deep = false;  // proposition values folded from the left: v0 v1 op v2 op ...
     double weight;
   };
   struct CompiledBlock {
@@ -147,18 +173,34 @@ class Evaluator {
   };
 
   double membership(const CompiledTerm& term, double x, Workspace& w) const;
+  double fuzzify(const CompiledTerm& term, double x, Workspace& w) const;
+  double linear(const CompiledTerm& term, const Workspace& w) const;
   double tsukamoto(const CompiledTerm& term, double w, double minimum, double maximum,
                    Workspace& ws) const;
   double antecedent(const CompiledRule& rule, const CompiledBlock& block, Workspace& w) const;
+  double activation_degree(const CompiledRule& rule, const CompiledBlock& block,
+                           Workspace& w) const;
+  double hedge(const CompiledProposition& p, double degree) const;
   double proposition(const CompiledProposition& p, Workspace& w) const;
   double fuzzy_output_degree(std::uint32_t output, std::int32_t term, const Workspace& w) const;
   void trigger(const CompiledRule& rule, double degree, TNorm implication, Workspace& w) const;
+  double weighted_value(const CompiledOutput& o, const CompiledTerm& term, double degree,
+                        Workspace& w) const;
   void activate(const CompiledBlock& block, Workspace& w) const;
+  void activate_general(const CompiledBlock& block, Workspace& w) const;
   void defuzzify(std::uint32_t output, Workspace& w) const;
   double integral(const CompiledOutput& o, Workspace& w) const;
   double weighted(const CompiledOutput& o, Workspace& w) const;
-  void sample_aggregate(const CompiledOutput& o, double minimum, double dx, int resolution,
-                        Workspace& w) const;
+  struct Aggregate {
+    std::size_t first;  // mu is zero outside [first, last)
+    std::size_t last;
+    // The last activated term, left for the caller to fold in (see integral()), or nullptr.
+    const double* deferred = nullptr;
+    double deferred_degree = 0.0;
+    TNorm deferred_implication = TNorm::None;
+  };
+  Aggregate aggregate(const CompiledOutput& o, bool defer_last, Workspace& w) const;
+  void sample_grids(std::size_t max_grid_values);
 
   std::vector<CompiledInput> inputs_;
   std::vector<CompiledOutput> outputs_;
@@ -167,16 +209,23 @@ class Evaluator {
   std::vector<CompiledFormula> formulas_;
   std::vector<CompiledProposition> propositions_;
   std::vector<Hedge> hedges_;
+  // Antecedents in postfix: >= 0 an index into Workspace::proposition_values_, Rule::kAnd,
+  // Rule::kOr, or kOutputProposition - p for the output proposition propositions_[p].
+  static constexpr std::int32_t kOutputProposition = -3;
   std::vector<std::int32_t> antecedent_;
   std::vector<CompiledProposition> conclusions_;
   std::vector<CompiledRule> rules_;
   std::vector<CompiledBlock> blocks_;
+  std::vector<std::uint32_t> fuzzified_terms_;      // input terms some proposition reads
+  std::vector<std::uint32_t> hedged_propositions_;  // input propositions with their own slot
+  std::vector<double> grid_x_;
+  std::vector<double> grid_values_;
   std::size_t activated_total_ = 0;
   std::size_t stack_size_ = 1;
   std::size_t formula_values_size_ = 0;
   std::size_t formula_stack_size_ = 0;
   std::size_t max_block_rules_ = 0;
-  int max_resolution_ = 0;
+  std::size_t max_grid_size_ = 0;
 };
 
 }  // namespace fuzzygait::fuzzy

@@ -27,6 +27,10 @@ class ParseError : public std::runtime_error {
 // Parses FLL text. `source` names the text in error messages (usually the file path).
 // Stricter than fuzzylite where fuzzylite would guess: unknown keys, missing or extra term
 // parameters, unparsable rules and unsorted Discrete points are errors, never defaults.
+// Also refused, so that every engine read writes back losslessly and evaluates in bounded
+// time: a '\r' inside a line (only "\r\n" line endings), a Discrete x that is nan, a
+// variable named 'and' or 'or', and a defuzzifier resolution above
+// Defuzzifier::kMaxResolution (10^6).
 Engine read_fll(std::string_view text, std::string_view source = "<fll>");
 Engine read_fll_file(const std::filesystem::path& path);
 

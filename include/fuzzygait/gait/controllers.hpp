@@ -1,0 +1,105 @@
+// A controller set: one fuzzy controller per (leg phase, joint), loaded from FLL files and a
+// small JSON manifest. Controllers read one or two metrics by name and output the joint's
+// velocity; this is all the data that makes a walk (the default set, and the styles).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fuzzygait/fuzzy/engine.hpp"
+#include "fuzzygait/fuzzy/evaluator.hpp"
+#include "fuzzygait/fuzzy/partition.hpp"
+
+namespace fuzzygait::gait {
+
+enum class Joint : std::uint8_t { Hip, Knee, Ankle, Toe };
+enum class LegPhase : std::uint8_t { Swing, Stance };
+
+inline constexpr int kSlotCount = 8;
+constexpr int slot(LegPhase phase, Joint joint) {
+  return static_cast<int>(phase) * 4 + static_cast<int>(joint);
+}
+// "swing_hip", "swing_knee", ..., "stance_toe".
+std::string_view slot_name(int slot);
+
+// What a controller may read, by input-variable name. Angles in degrees.
+enum class Metric : std::uint8_t {
+  Delta,       // "delta": the leg's progress, -1 start, 0 thigh vertical, +1 arrived
+  OtherDelta,  // "other_delta": the other leg's delta
+  Hip,         // "hip": hip flexion
+  Knee,        // "knee": knee flexion
+  Ankle,       // "ankle": ankle dorsiflexion
+  Toe,         // "toe": MTP extension
+  Sole,        // "sole": angle of the sole to the ground surface under it, toes up +
+};
+inline constexpr int kMetricCount = 7;
+std::string_view metric_name(Metric metric);
+std::optional<Metric> metric_from_name(std::string_view name);
+
+using MetricValues = std::array<double, kMetricCount>;
+
+// One joint controller: a fuzzy engine with one or two metric inputs and one output. Engines of
+// the partition shape (triangles, constants, weighted average) run on the fast path.
+class Controller {
+ public:
+  // Throws std::invalid_argument naming `source` when the engine does not fit: inputs must be
+  // metric names, one output, and the engine must compile.
+  Controller(fuzzy::Engine engine, std::string source);
+
+  double evaluate(const MetricValues& metrics, fuzzy::Workspace& workspace) const {
+    const double a = metrics[static_cast<std::size_t>(inputs_[0])];
+    if (partition_) {
+      return input_count_ == 1
+                 ? partition_->evaluate(a)
+                 : partition_->evaluate(a, metrics[static_cast<std::size_t>(inputs_[1])]);
+    }
+    return evaluate_general(metrics, workspace);
+  }
+  fuzzy::Workspace make_workspace() const;
+
+  const fuzzy::Engine& engine() const { return engine_; }
+  const std::string& source() const { return source_; }
+  bool fast_path() const { return partition_.has_value(); }
+  std::size_t input_count() const { return input_count_; }
+  Metric input(std::size_t i) const { return inputs_[i]; }
+
+ private:
+  double evaluate_general(const MetricValues& metrics, fuzzy::Workspace& workspace) const;
+
+  fuzzy::Engine engine_;
+  std::string source_;
+  std::array<Metric, 2> inputs_{};
+  std::size_t input_count_ = 0;
+  std::optional<fuzzy::PartitionController<double>> partition_;
+  std::optional<fuzzy::Evaluator> evaluator_;
+};
+
+struct ControllerSet {
+  std::string name;
+  std::string description;
+  // Time constant (s) with which a joint's velocity follows its controller: the limbs' inertia.
+  double inertia = 0.03;
+  double pelvis_tilt = 0.19;  // radians, anterior +
+  std::vector<Controller> controllers;  // indexed by slot()
+
+  const Controller& at(LegPhase phase, Joint joint) const {
+    return controllers[static_cast<std::size_t>(slot(phase, joint))];
+  }
+
+  // Reads DIR/manifest.json and the FLL files it names.
+  static ControllerSet load(const std::filesystem::path& directory);
+  // The same from texts: `files` maps file names in the manifest to FLL text.
+  static ControllerSet parse(std::string_view manifest, const std::map<std::string, std::string>& files,
+                             const std::string& source);
+  // The sets compiled into the library (the controllers/ folder at build time).
+  static std::vector<std::string> builtin_names();
+  static ControllerSet builtin(std::string_view name);
+};
+
+}  // namespace fuzzygait::gait

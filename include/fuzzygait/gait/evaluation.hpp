@@ -1,0 +1,85 @@
+// How we measure a walk (DESIGN.md, "How we measure"): realism against normative curves,
+// contact quality, timing, and smoothness at phase switches. Works on a Motion, recorded live or
+// read back from a walk CSV, so every figure comes from a command anyone can run.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/gait/motion.hpp"
+#include "fuzzygait/terrain/terrain.hpp"
+
+namespace fuzzygait::gait {
+
+inline constexpr int kCycleSamples = 51;  // 0..100 % of the gait cycle in 2 % steps
+
+// Mean and one standard deviation over the gait cycle, degrees, sampled at kCycleSamples.
+struct Curve {
+  std::array<double, kCycleSamples> mean{};
+  std::array<double, kCycleSamples> sd{};
+};
+
+// Normative sagittal curves (e.g. Schwartz et al. 2008): hip, knee, ankle, pelvic tilt, and
+// the thigh's inclination (hip minus pelvic tilt), which is what we compare.
+struct Normative {
+  std::string name;
+  Curve hip;
+  Curve knee;
+  Curve ankle;
+  Curve pelvis_tilt;
+  Curve thigh;
+};
+
+struct JointScore {
+  double rmse = 0.0;        // degrees
+  double pearson = 0.0;     // correlation of the mean curves
+  double within_2sd = 0.0;  // share of samples inside mean +/- 2 SD, percent
+};
+
+struct GaitReport {
+  int cycles = 0;  // complete left cycles measured (the first is skipped)
+  double cycle_time = 0.0;       // s
+  double cycle_time_sd = 0.0;    // s, between cycles: regularity
+  double cadence = 0.0;          // steps per minute
+  double speed = 0.0;            // m/s, pelvis
+  double stance_percent = 0.0;   // left foot in contact, share of the cycle
+  double step_length = 0.0;      // m, heel to heel at successive heel strikes
+  double step_length_sd = 0.0;
+  double step_error_percent = 0.0;  // against the command, when given
+  double knee_peak = 0.0;           // degrees, swing
+  double knee_peak_percent = 0.0;   // where in the cycle
+  double thigh_range = 0.0;         // degrees, max - min of the mean curve
+  double pelvis_vertical_range = 0.0;  // m, mean cycle
+  double max_slip = 0.0;            // m per frame, foot points in contact
+  double max_penetration = 0.0;     // m below the ground, any foot point
+  double min_toe_clearance = 0.0;   // m, mid-swing (middle 60 % of swing)
+  double max_velocity_jump = 0.0;   // deg/s, largest change of a joint's velocity at a phase switch
+  double typical_velocity_change = 0.0;  // deg/s, 99th percentile of frame-to-frame changes
+  // Mean curves of the left leg over the cycle (degrees): thigh inclination, knee, ankle, toe.
+  Curve thigh;
+  Curve knee;
+  Curve ankle;
+  Curve toe;
+  std::optional<JointScore> thigh_score;
+  std::optional<JointScore> knee_score;
+  std::optional<JointScore> ankle_score;
+};
+
+// Measures the walk. `reference` adds the realism scores; `commanded_step` the step error.
+// Throws std::invalid_argument when the walk has fewer than two complete left cycles after the
+// first (nothing to measure).
+GaitReport evaluate(const Motion& motion, const terrain::Terrain& terrain,
+                    const Normative* reference = nullptr,
+                    std::optional<double> commanded_step = std::nullopt);
+
+// The report as a table people read, and as JSON.
+std::string to_text(const GaitReport& report);
+std::string to_json(const GaitReport& report);
+
+// Resamples a periodic series to kCycleSamples points over [begin, end] frames.
+std::array<double, kCycleSamples> resample_cycle(const std::vector<double>& values,
+                                                 std::size_t begin, std::size_t end);
+
+}  // namespace fuzzygait::gait

@@ -1,0 +1,146 @@
+// The paper's walking system: each frame the walker measures its metrics, asks the fuzzy
+// controllers for joint velocities, integrates them at a fixed time step, and keeps planted feet
+// where they are. This is the runtime API a game calls every frame.
+//
+// Who drives what:
+//   swing leg        hip, knee, ankle and toe: their swing controllers.
+//   stance leg       hip and knee: their stance controllers. Ankle: the stance controller while
+//                    the heel rolls down (heel rocker) and after the heel lifts (push-off); while
+//                    the foot is flat the ground holds the foot and the ankle follows the shank,
+//                    until the controller asks to plantarflex faster than the shank allows: the
+//                    heel lifts. Toe: its controller, except after heel-off when the toes stay flat
+//                    on the ground (the MTP angle follows the foot).
+//   pelvis           carried by the leg planted first: its foot anchors the chain, so a planted
+//                    foot never slides, and the body moves on without a jerk at heel strike.
+//   double support   the newly planted leg's hip and knee close the chain by two-link IK onto
+//                    its heel (the only IK in the system) while its ankle lowers the forefoot;
+//                    once that foot is flat, the trailing leg lifts off (toe off) and the new
+//                    leg carries the pelvis.
+//   joint velocity   follows the controller's command with the set's inertia time constant, so
+//                    velocities never jump, even where a phase hands a joint to another controller.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/rig/rig.hpp"
+#include "fuzzygait/terrain/terrain.hpp"
+
+namespace fuzzygait::gait {
+
+// Contact configuration of a leg.
+enum class Phase : std::uint8_t {
+  Swing,  // foot in the air
+  Heel,   // heel on the ground, forefoot not yet (heel rocker, after heel strike)
+  Flat,   // whole foot on the ground (after foot flat)
+  Ball,   // heel lifted, ball and toes on the ground (after heel off)
+};
+const char* name(Phase phase);
+
+enum class Event : std::uint8_t { HeelStrike, ForefootStrike, FootFlat, HeelOff, ToeOff };
+const char* name(Event event);
+
+struct LegState {
+  Phase phase = Phase::Swing;
+  rig::LegAngles angles;    // radians
+  rig::LegAngles velocity;  // radians per second
+  rig::Point anchor;        // the planted contact point (heel in Heel/Flat, ball in Ball)
+  double sweep_start = 0.0;  // thigh inclination where delta = -1 (radians)
+  double sweep_end = 0.0;    // stance: thigh inclination where delta = +1
+  double target_x = 0.0;     // swing: where the heel should land
+  double strike_x = 0.0;     // stance: where the heel landed
+  double delta = 0.0;        // the leg's last progress metric
+};
+
+// Everything that changes while walking: plain data, so many characters pack into arrays.
+struct WalkerState {
+  double time = 0.0;
+  rig::Point pelvis;
+  double pelvis_tilt = 0.0;
+  std::array<LegState, 2> legs;
+  int lead = 0;               // leg whose planted foot carries the pelvis; -1 while airborne
+  double fall_velocity = 0.0;  // m/s, while airborne (only after awkward starts)
+  std::uint32_t heel_strikes = 0;
+};
+
+struct StartPose {
+  // Random joint angles within the joint limits (seeded, deterministic) instead of the default
+  // mid-stride pose; the lower foot is put on the ground.
+  bool random = false;
+  std::uint64_t seed = 0;
+};
+
+struct WalkerOptions {
+  rig::Segments segments = rig::segments_from_stature(1.75);
+  double step_length = 0.70;         // metres, heel to heel
+  double time_step = 1.0 / 240.0;    // seconds; advance() subdivides longer frames
+  rig::JointLimits limits;
+  StartPose start;
+};
+
+struct EventRecord {
+  double time;
+  rig::Side side;
+  Event event;
+  rig::Point where;
+};
+
+class Walker {
+ public:
+  // The controller set and terrain must outlive the walker. Throws std::invalid_argument for a
+  // bad rig, or a step length the legs cannot reach (it names the limit).
+  Walker(const ControllerSet& controllers, const WalkerOptions& options,
+         const terrain::Terrain& terrain);
+
+  // Changes the commanded step length; it applies from the next foot placement.
+  void set_step_length(double metres);
+  double step_length() const { return step_length_; }
+
+  // Advances by dt seconds in fixed time steps. No allocation, no file access.
+  void advance(double dt);
+
+  const WalkerState& state() const { return state_; }
+  rig::Pose pose() const;
+  rig::LegPoints points(rig::Side side) const;
+  Phase phase(rig::Side side) const { return state_.legs[rig::index(side)].phase; }
+  bool in_contact(rig::Side side) const { return phase(side) != Phase::Swing; }
+  double time() const { return state_.time; }
+  const rig::Segments& segments() const { return segments_; }
+
+  // Contact events since the last call (capacity fixed at construction; oldest dropped).
+  const std::vector<EventRecord>& events() const { return events_; }
+  void clear_events() { events_.clear(); }
+
+  // Longest step the legs can make (metres).
+  static double max_step_length(const rig::Segments& segments);
+
+ private:
+  void step(double h);
+  void start(const StartPose& start_pose);
+  void record(rig::Side side, Event event, rig::Point where);
+  void strike(int leg, Phase phase, rig::Point contact);
+  void lift_off(int leg);
+  void hand_over(int leg);
+  void place_pelvis(int leg);
+  bool close_chain(int leg);
+  void settle_foot(int leg, const rig::LegAngles& commanded, double ankle_command);
+  double stance_target() const;
+  double foot_depth(const rig::LegPoints& points) const;
+  void clear_ground(int leg, double max_change);
+  void update_metrics(int leg, const rig::LegPoints& points, MetricValues& metrics);
+
+  const ControllerSet* controllers_;
+  const terrain::Terrain* terrain_;
+  rig::Segments segments_;
+  rig::JointLimits limits_;
+  double step_length_;
+  double time_step_;
+  double heel_offset_ = 0.0;
+  WalkerState state_;
+  std::array<fuzzy::Workspace, kSlotCount> workspaces_;
+  std::vector<EventRecord> events_;
+};
+
+}  // namespace fuzzygait::gait

@@ -1,0 +1,65 @@
+// Tuning a controller set against normative gait curves: the output velocities of every rule
+// ("velocity is fast") are the parameters; a candidate is scored by walking it and measuring the
+// walk (realism against the reference, contact quality, timing). The result keeps the set's
+// rules and words, so the artist reads and edits it as before.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/gait/evaluation.hpp"
+
+namespace fuzzygait::learn {
+
+struct WalkCondition {
+  double stature = 1.75;
+  double step_length = 0.70;
+  bool realism = true;  // score the curves against the reference (else contact and timing only)
+};
+
+struct TuneOptions {
+  std::vector<WalkCondition> conditions = {{1.75, 0.70, true}};
+  gait::Normative reference;
+  double duration = 10.0;  // s per walk
+  double fps = 120.0;
+  int generations = 200;
+  int threads = 2;
+  std::uint64_t seed = 1;
+  double sigma = 0.3;
+  std::function<void(int generation, double cost)> progress;
+};
+
+// The parameters of a set: every Constant output term of every controller, and the inertia.
+class SetParameters {
+ public:
+  explicit SetParameters(const gait::ControllerSet& base);
+  std::size_t size() const { return scales_.size(); }
+  // Scaled so that a change of 1 is a large change for every parameter.
+  std::vector<double> values() const;
+  gait::ControllerSet apply(const std::vector<double>& scaled) const;
+  // The set with every value rounded to `significant` significant digits.
+  gait::ControllerSet rounded(const std::vector<double>& scaled, int significant) const;
+
+ private:
+  gait::ControllerSet base_;
+  std::vector<double> scales_;
+  std::vector<double> start_;
+};
+
+// The tuning objective: lower is better. `report` receives a one-line summary per condition.
+double walk_cost(const gait::ControllerSet& set, const TuneOptions& options,
+                 std::string* report = nullptr);
+
+struct TuneResult {
+  gait::ControllerSet set;
+  double cost = 0.0;
+  double start_cost = 0.0;
+  int evaluations = 0;
+};
+
+TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options);
+
+}  // namespace fuzzygait::learn

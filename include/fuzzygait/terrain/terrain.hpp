@@ -1,0 +1,35 @@
+// Ground profiles in the sagittal plane: a height for every x, as a polyline.
+// Flat ground, slopes and stairs are all polylines; the walker asks for height and slope.
+#pragma once
+
+#include <vector>
+
+#include "fuzzygait/rig/rig.hpp"
+
+namespace fuzzygait::terrain {
+
+using rig::Point;
+
+class Terrain {
+ public:
+  // Level ground at height 0.
+  static Terrain flat();
+  // Ground through the given points, sorted by x; constant beyond the ends. Throws
+  // std::invalid_argument when points are fewer than two, not finite, or x does not increase
+  // (vertical risers are two points with x a millimetre apart).
+  static Terrain polyline(std::vector<Point> points);
+
+  double height(double x) const;
+  // Slope angle (radians, uphill forward +) of the segment under x.
+  double slope(double x) const;
+  // The profile between x0 and x1 as points, for drawing and files.
+  std::vector<Point> profile(double x0, double x1) const;
+  const std::vector<Point>& points() const { return points_; }
+
+ private:
+  explicit Terrain(std::vector<Point> points);
+  std::size_t segment(double x) const;
+  std::vector<Point> points_;
+};
+
+}  // namespace fuzzygait::terrain

@@ -1,0 +1,197 @@
+#include "fuzzygait/gait/controllers.hpp"
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "builtin_controllers.hpp"
+#include "fuzzygait/fuzzy/fll.hpp"
+#include "fuzzygait/rig/rig.hpp"
+
+namespace fuzzygait::gait {
+namespace {
+
+constexpr std::array<std::string_view, kSlotCount> kSlotNames = {
+    "swing_hip",  "swing_knee",  "swing_ankle",  "swing_toe",
+    "stance_hip", "stance_knee", "stance_ankle", "stance_toe"};
+constexpr std::array<std::string_view, kMetricCount> kMetricNames = {
+    "delta", "other_delta", "hip", "knee", "ankle", "toe", "sole"};
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot open the file");
+  std::ostringstream content;
+  content << in.rdbuf();
+  return content.str();
+}
+
+double number(const nlohmann::json& manifest, const char* key, double fallback, double low,
+              double high, const std::string& source) {
+  if (!manifest.contains(key)) return fallback;
+  const nlohmann::json& v = manifest.at(key);
+  if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < low ||
+      v.get<double>() > high) {
+    throw std::invalid_argument(source + ": '" + key + "' must be a number between " +
+                                fuzzy::format_scalar(low) + " and " + fuzzy::format_scalar(high));
+  }
+  return v.get<double>();
+}
+
+}  // namespace
+
+std::string_view slot_name(int slot) { return kSlotNames.at(static_cast<std::size_t>(slot)); }
+
+std::string_view metric_name(Metric metric) {
+  return kMetricNames.at(static_cast<std::size_t>(metric));
+}
+
+std::optional<Metric> metric_from_name(std::string_view name) {
+  for (std::size_t i = 0; i < kMetricNames.size(); ++i) {
+    if (kMetricNames[i] == name) return static_cast<Metric>(i);
+  }
+  return std::nullopt;
+}
+
+Controller::Controller(fuzzy::Engine engine, std::string source)
+    : engine_(std::move(engine)), source_(std::move(source)) {
+  if (engine_.inputs.empty() || engine_.inputs.size() > 2) {
+    throw std::invalid_argument(source_ + ": a joint controller reads one or two metrics, found " +
+                                std::to_string(engine_.inputs.size()) + " inputs");
+  }
+  for (std::size_t i = 0; i < engine_.inputs.size(); ++i) {
+    const std::optional<Metric> m = metric_from_name(engine_.inputs[i].name);
+    if (!m) {
+      std::string known;
+      for (std::string_view n : kMetricNames) known += (known.empty() ? "" : ", ") + std::string(n);
+      throw std::invalid_argument(source_ + ": input '" + engine_.inputs[i].name +
+                                  "' is not a metric (" + known + ")");
+    }
+    inputs_[i] = *m;
+  }
+  input_count_ = engine_.inputs.size();
+  if (engine_.outputs.size() != 1) {
+    throw std::invalid_argument(source_ + ": a joint controller has one output, found " +
+                                std::to_string(engine_.outputs.size()));
+  }
+  partition_ = fuzzy::as_partition(engine_);
+  try {
+    evaluator_.emplace(engine_);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(source_ + ": " + e.what());
+  }
+}
+
+fuzzy::Workspace Controller::make_workspace() const {
+  return partition_ ? fuzzy::Workspace() : evaluator_->make_workspace();
+}
+
+double Controller::evaluate_general(const MetricValues& metrics,
+                                    fuzzy::Workspace& workspace) const {
+  std::array<double, 2> in{};
+  for (std::size_t i = 0; i < input_count_; ++i) {
+    in[i] = metrics[static_cast<std::size_t>(inputs_[i])];
+  }
+  double out = 0.0;
+  evaluator_->evaluate(std::span<const double>(in.data(), input_count_),
+                       std::span<double>(&out, 1), workspace);
+  return out;
+}
+
+ControllerSet ControllerSet::parse(std::string_view manifest_text,
+                                   const std::map<std::string, std::string>& files,
+                                   const std::string& source) {
+  const std::string manifest_source = source + "/manifest.json";
+  nlohmann::json manifest;
+  try {
+    manifest = nlohmann::json::parse(manifest_text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw std::invalid_argument(manifest_source + ": " + e.what());
+  }
+  if (!manifest.is_object()) throw std::invalid_argument(manifest_source + ": not a JSON object");
+  ControllerSet set;
+  set.name = manifest.value("name", std::string());
+  set.description = manifest.value("description", std::string());
+  set.inertia = number(manifest, "inertia_s", 0.03, 0.001, 1.0, manifest_source);
+  set.pelvis_tilt =
+      rig::radians(number(manifest, "pelvis_tilt_deg", 11.0, -45.0, 45.0, manifest_source));
+  if (!manifest.contains("controllers") || !manifest["controllers"].is_object()) {
+    throw std::invalid_argument(manifest_source + ": 'controllers' must map slots to FLL files");
+  }
+  const nlohmann::json& names = manifest["controllers"];
+  for (auto it = names.begin(); it != names.end(); ++it) {
+    bool known = false;
+    for (std::string_view s : kSlotNames) known = known || s == it.key();
+    if (!known) {
+      throw std::invalid_argument(manifest_source + ": unknown controller slot '" + it.key() +
+                                  "'");
+    }
+  }
+  for (int s = 0; s < kSlotCount; ++s) {
+    const std::string key(slot_name(s));
+    if (!names.contains(key) || !names[key].is_string()) {
+      throw std::invalid_argument(manifest_source + ": controller '" + key + "' is missing");
+    }
+    const std::string file = names[key].get<std::string>();
+    const auto text = files.find(file);
+    if (text == files.end()) {
+      throw std::invalid_argument(manifest_source + ": controller '" + key + "' names '" + file +
+                                  "', which is not in the set");
+    }
+    const std::string path = source + "/" + file;
+    set.controllers.emplace_back(fuzzy::read_fll(text->second, path), path);
+  }
+  return set;
+}
+
+ControllerSet ControllerSet::load(const std::filesystem::path& directory) {
+  const std::string manifest = read_text(directory / "manifest.json");
+  std::map<std::string, std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+    if (entry.path().extension() == ".fll") {
+      files[entry.path().filename().string()] = read_text(entry.path());
+    }
+  }
+  return parse(manifest, files, directory.string());
+}
+
+namespace {
+std::pair<std::string_view, std::string_view> split_path(std::string_view path) {
+  const std::size_t slash = path.find('/');
+  return {path.substr(0, slash), path.substr(slash + 1)};
+}
+}  // namespace
+
+std::vector<std::string> ControllerSet::builtin_names() {
+  std::set<std::string> names;
+  for (const detail::EmbeddedFile& f : detail::embedded_files()) {
+    names.emplace(split_path(f.path).first);
+  }
+  return {names.begin(), names.end()};
+}
+
+ControllerSet ControllerSet::builtin(std::string_view name) {
+  std::map<std::string, std::string> files;
+  std::string manifest;
+  for (const detail::EmbeddedFile& f : detail::embedded_files()) {
+    const auto [set, file] = split_path(f.path);
+    if (set != name) continue;
+    if (file == "manifest.json") {
+      manifest = std::string(f.text);
+    } else {
+      files[std::string(file)] = std::string(f.text);
+    }
+  }
+  if (manifest.empty()) {
+    std::string known;
+    for (const std::string& n : builtin_names()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("no built-in controller set '" + std::string(name) +
+                                "' (built in: " + known + ")");
+  }
+  return parse(manifest, files, "controllers/" + std::string(name));
+}
+
+}  // namespace fuzzygait::gait

@@ -1,0 +1,535 @@
+#include "fuzzygait/gait/walker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace fuzzygait::gait {
+namespace {
+
+using rig::LegAngles;
+using rig::LegPoints;
+using rig::Point;
+
+constexpr double kGravity = 9.81;
+constexpr std::size_t kEventCapacity = 64;
+// A swing foot lands once its leg's delta reaches this (the leg arrives in front of the body).
+constexpr double kLandingDelta = 0.8;
+// The clearance reflex keeps a swinging foot this far above the ground, m.
+constexpr double kSwingClearance = 0.008;
+// Fastest the clearance reflex folds the knee, rad/s.
+constexpr double kReflexSpeed = 10.0;
+
+double thigh_of(double tilt, const LegAngles& a) { return a.hip - tilt; }
+double shank_of(double tilt, const LegAngles& a) { return a.hip - tilt - a.knee; }
+double foot_of(double tilt, const LegAngles& a) { return shank_of(tilt, a) + a.ankle; }
+
+// Inclination of the line from `from` to `to`, from the downward vertical, forward positive.
+double inclination(Point from, Point to) { return std::atan2(to.x - from.x, from.y - to.y); }
+
+// The paper's delta: -1 at the start angle, 0 when the thigh is vertical, +1 at the end angle
+// (linear between start and end when both lie on the same side of the vertical).
+double progress(double theta, double start, double end) {
+  double d;
+  if ((start < 0.0 && end > 0.0) || (start > 0.0 && end < 0.0)) {
+    d = (theta * start >= 0.0) ? -theta / start : theta / end;
+  } else {
+    d = end == start ? 1.0 : -1.0 + 2.0 * (theta - start) / (end - start);
+  }
+  return std::clamp(d, -2.0, 2.0);
+}
+
+// d(theta)/d(delta) averaged over the sweep: hip controllers command a share of the sweep per
+// second, so the thigh's velocity stays smooth where the mapping bends at the vertical.
+double sweep_scale(double start, double end) { return 0.5 * (end - start); }
+
+Point contact_point(const LegPoints& p, Phase phase) {
+  return phase == Phase::Ball ? p.ball : p.heel;
+}
+
+}  // namespace
+
+const char* name(Phase phase) {
+  switch (phase) {
+    case Phase::Swing:
+      return "swing";
+    case Phase::Heel:
+      return "heel";
+    case Phase::Flat:
+      return "flat";
+    case Phase::Ball:
+      return "ball";
+  }
+  return "?";
+}
+
+const char* name(Event event) {
+  switch (event) {
+    case Event::HeelStrike:
+      return "heel strike";
+    case Event::ForefootStrike:
+      return "forefoot strike";
+    case Event::FootFlat:
+      return "foot flat";
+    case Event::HeelOff:
+      return "heel off";
+    case Event::ToeOff:
+      return "toe off";
+  }
+  return "?";
+}
+
+double Walker::max_step_length(const rig::Segments& s) { return 1.2 * s.leg_length(); }
+
+Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
+               const terrain::Terrain& terrain)
+    : controllers_(&controllers),
+      terrain_(&terrain),
+      segments_(options.segments),
+      limits_(options.limits),
+      step_length_(options.step_length),
+      time_step_(options.time_step) {
+  rig::validate(segments_);
+  if (controllers.controllers.size() != static_cast<std::size_t>(kSlotCount)) {
+    throw std::invalid_argument("the controller set is incomplete");
+  }
+  if (!std::isfinite(time_step_) || time_step_ <= 0.0 || time_step_ > 0.05) {
+    throw std::invalid_argument("time step must be between 0 and 0.05 s");
+  }
+  set_step_length(options.step_length);
+  for (int s = 0; s < kSlotCount; ++s) {
+    workspaces_[static_cast<std::size_t>(s)] =
+        controllers.controllers[static_cast<std::size_t>(s)].make_workspace();
+  }
+  events_.reserve(kEventCapacity);
+  // Angle between the thigh and the hip-heel line of a straight leg with a neutral ankle.
+  const LegPoints straight = rig::forward_kinematics(segments_, {0.0, 0.0}, 0.0, LegAngles{});
+  heel_offset_ = -inclination(straight.hip, straight.heel);
+  start(options.start);
+}
+
+void Walker::set_step_length(double metres) {
+  const double longest = max_step_length(segments_);
+  if (!std::isfinite(metres) || metres < 0.05 || metres > longest) {
+    throw std::invalid_argument("step length must be between 0.05 m and " +
+                                std::to_string(longest) +
+                                " m (1.2 leg lengths, the reach of these legs), got " +
+                                std::to_string(metres));
+  }
+  step_length_ = metres;
+}
+
+rig::Pose Walker::pose() const {
+  rig::Pose p;
+  p.pelvis = state_.pelvis;
+  p.pelvis_tilt = state_.pelvis_tilt;
+  p.legs = {state_.legs[0].angles, state_.legs[1].angles};
+  return p;
+}
+
+LegPoints Walker::points(rig::Side side) const {
+  return rig::forward_kinematics(segments_, state_.pelvis, state_.pelvis_tilt,
+                                 state_.legs[rig::index(side)].angles);
+}
+
+void Walker::record(rig::Side side, Event event, Point where) {
+  if (events_.size() == kEventCapacity) events_.erase(events_.begin());
+  events_.push_back({state_.time, side, event, where});
+}
+
+double Walker::stance_target() const {
+  const double reach = segments_.thigh + segments_.shank;
+  return -std::asin(std::clamp(0.5 * step_length_ / reach, 0.0, 0.95));
+}
+
+void Walker::start(const StartPose& start_pose) {
+  state_ = WalkerState{};
+  state_.pelvis_tilt = controllers_->pelvis_tilt;
+  const double tilt = state_.pelvis_tilt;
+  LegState& left = state_.legs[0];
+  LegState& right = state_.legs[1];
+  if (start_pose.random) {
+    std::uint64_t x = start_pose.seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull;
+    auto uniform = [&x](double low, double high) {  // splitmix64: the same on every platform
+      x += 0x9E3779B97F4A7C15ull;
+      std::uint64_t z = x;
+      z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+      z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+      z ^= z >> 31;
+      return low + (high - low) * static_cast<double>(z >> 11) * 0x1.0p-53;
+    };
+    for (LegState& leg : state_.legs) {
+      leg.angles.hip = uniform(limits_.minimum.hip, limits_.maximum.hip);
+      leg.angles.knee = uniform(limits_.minimum.knee, limits_.maximum.knee);
+      leg.angles.ankle = uniform(limits_.minimum.ankle, limits_.maximum.ankle);
+      leg.angles.toe = uniform(limits_.minimum.toe, limits_.maximum.toe);
+    }
+  } else {
+    // Mid stance on the right foot, the left leg swinging past it.
+    right.angles = {rig::radians(2.0) + tilt, rig::radians(8.0), rig::radians(6.0), 0.0};
+    left.angles = {rig::radians(0.0) + tilt, rig::radians(55.0), rig::radians(-5.0), 0.0};
+  }
+  // Put the lower foot on the ground with the pelvis above x = 0.
+  state_.pelvis = {0.0, 0.0};
+  std::array<double, 2> lowest{};
+  for (int leg = 0; leg < 2; ++leg) {
+    const LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt,
+                                                state_.legs[static_cast<std::size_t>(leg)].angles);
+    lowest[static_cast<std::size_t>(leg)] =
+        std::min({p.heel.y - terrain_->height(p.heel.x), p.ball.y - terrain_->height(p.ball.x),
+                  p.tip.y - terrain_->height(p.tip.x)});
+  }
+  // The default start stands on the right foot; a random start on the lower foot.
+  const int down = start_pose.random ? (lowest[0] <= lowest[1] ? 0 : 1) : 1;
+  state_.pelvis.y = -lowest[static_cast<std::size_t>(down)];
+  LegState& planted = state_.legs[static_cast<std::size_t>(down)];
+  LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
+  // Toes resting on the ground keep the foot's sole on it.
+  if (p.tip.y - terrain_->height(p.tip.x) < std::min(p.heel.y, p.ball.y) - 1e-9) {
+    planted.angles.toe = terrain_->slope(p.ball.x) - foot_of(tilt, planted.angles);
+    state_.pelvis.y = 0.0;
+    p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
+    state_.pelvis.y = -std::min(p.heel.y - terrain_->height(p.heel.x),
+                                p.ball.y - terrain_->height(p.ball.x));
+    p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
+  }
+  const double heel_gap = p.heel.y - terrain_->height(p.heel.x);
+  const double ball_gap = p.ball.y - terrain_->height(p.ball.x);
+  const double flat_within = 0.002;  // m
+  const Phase phase = std::abs(heel_gap - ball_gap) < flat_within ? Phase::Flat
+                      : heel_gap < ball_gap                       ? Phase::Heel
+                                                                  : Phase::Ball;
+  if (phase == Phase::Flat) {
+    // Level the sole on the ground.
+    planted.angles.ankle = terrain_->slope(p.heel.x) - shank_of(tilt, planted.angles);
+    state_.pelvis.y = 0.0;
+    p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
+    state_.pelvis.y = terrain_->height(p.heel.x) - p.heel.y;
+    p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
+  }
+  state_.lead = -1;
+  strike(down, phase, phase == Phase::Ball ? Point{p.ball.x, terrain_->height(p.ball.x)}
+                                           : Point{p.heel.x, terrain_->height(p.heel.x)});
+  if (!start_pose.random) {
+    // As if the right heel had struck a step ago and the left toes had just left the ground.
+    planted.sweep_start = rig::radians(24.0);
+    planted.strike_x = p.heel.x;
+  }
+  const int up = 1 - down;
+  lift_off(up);
+  if (!start_pose.random) state_.legs[static_cast<std::size_t>(up)].sweep_start = rig::radians(-12.0);
+  events_.clear();
+  state_.heel_strikes = 0;
+}
+
+void Walker::strike(int leg, Phase phase, Point contact) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const double tilt = state_.pelvis_tilt;
+  l.phase = phase;
+  l.anchor = contact;
+  l.strike_x = phase == Phase::Ball ? contact.x - segments_.heel - segments_.ball : contact.x;
+  l.sweep_start = thigh_of(tilt, l.angles);
+  l.sweep_end = stance_target();
+  ++state_.heel_strikes;
+  record(static_cast<rig::Side>(leg), phase == Phase::Ball ? Event::ForefootStrike : Event::HeelStrike,
+         contact);
+  if (state_.lead < 0) {
+    state_.lead = leg;
+    state_.fall_velocity = 0.0;
+    place_pelvis(leg);
+  }
+}
+
+// The planted leg that carries the pelvis lifts off; the other planted foot takes over.
+void Walker::hand_over(int leg) {
+  const int next = 1 - leg;
+  const bool planted = state_.legs[static_cast<std::size_t>(next)].phase != Phase::Swing;
+  state_.lead = planted ? next : -1;
+  lift_off(leg);
+  if (planted) place_pelvis(next);
+}
+
+void Walker::lift_off(int leg) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, state_.pelvis_tilt, l.angles);
+  if (l.phase != Phase::Swing) record(static_cast<rig::Side>(leg), Event::ToeOff, p.tip);
+  l.phase = Phase::Swing;
+  l.sweep_start = thigh_of(state_.pelvis_tilt, l.angles);
+  const int lead = state_.lead;
+  const double from = (lead >= 0 && lead != leg) ? state_.legs[static_cast<std::size_t>(lead)].strike_x
+                                                 : p.heel.x;
+  l.target_x = from + step_length_;
+}
+
+void Walker::place_pelvis(int leg) {
+  const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const LegPoints p = rig::forward_kinematics(segments_, {0.0, 0.0}, state_.pelvis_tilt, l.angles);
+  const Point c = contact_point(p, l.phase);
+  state_.pelvis = {l.anchor.x - c.x, l.anchor.y - c.y};
+}
+
+// Two-link IK of a planted trailing leg: hip and knee put its contact point back on its anchor
+// (the ankle itself while the foot is flat). Returns false when out of reach.
+bool Walker::close_chain(int leg) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const rig::Segments& s = segments_;
+  const double tilt = state_.pelvis_tilt;
+  const double slope = terrain_->slope(l.anchor.x);
+  Point target = l.anchor;
+  double we = 0.0;
+  double wn = -s.shank;
+  if (l.phase == Phase::Flat) {
+    // The ankle sits above the planted heel.
+    target = {l.anchor.x + s.heel * std::cos(slope) - s.ankle_height * std::sin(slope),
+              l.anchor.y + s.heel * std::sin(slope) + s.ankle_height * std::cos(slope)};
+  } else {
+    const double cf = l.phase == Phase::Ball ? s.ball : -s.heel;
+    const double cu = -s.ankle_height;
+    const double ca = std::cos(l.angles.ankle);
+    const double sa = std::sin(l.angles.ankle);
+    we = cf * ca - cu * sa;
+    wn = cf * sa + cu * ca - s.shank;
+  }
+  const double lower = std::hypot(we, wn);
+  const Point hip = state_.pelvis;
+  const double dx = target.x - hip.x;
+  const double dy = target.y - hip.y;
+  const double distance = std::hypot(dx, dy);
+  if (distance > s.thigh + lower - 1e-9) return false;
+  const double d = std::max(distance, std::abs(s.thigh - lower) + 1e-9);
+  const double cos_hip = std::clamp(
+      (s.thigh * s.thigh + d * d - lower * lower) / (2.0 * s.thigh * d), -1.0, 1.0);
+  const double thigh = inclination(hip, target) + std::acos(cos_hip);
+  const Point knee{hip.x + s.thigh * std::sin(thigh), hip.y - s.thigh * std::cos(thigh)};
+  // The knee-to-contact vector is (we, wn) in the shank's frame, rotated by the shank's
+  // inclination.
+  const double shank_inclination = std::remainder(
+      std::atan2(target.y - knee.y, target.x - knee.x) - std::atan2(wn, we), 2.0 * std::numbers::pi);
+  l.angles.hip = thigh + tilt;
+  l.angles.knee = std::max(0.0, thigh - shank_inclination);
+  if (l.phase == Phase::Flat) {
+    l.angles.ankle = slope - (thigh - l.angles.knee);
+  } else if (l.phase == Phase::Ball) {
+    l.angles.toe = slope - foot_of(tilt, l.angles);
+  }
+  return true;
+}
+
+// The planted foot's phase rules for its ankle and toe (see the header), given the ankle angle
+// the controller integrated to.
+void Walker::settle_foot(int leg, const LegAngles& commanded, double ankle_command) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const double tilt = state_.pelvis_tilt;
+  const double slope = terrain_->slope(l.anchor.x);
+  const double sole_length = segments_.heel + segments_.ball;
+  switch (l.phase) {
+    case Phase::Heel:
+      if (foot_of(tilt, l.angles) <= slope) {
+        l.angles.ankle = slope - shank_of(tilt, l.angles);
+        l.phase = Phase::Flat;
+        record(static_cast<rig::Side>(leg), Event::FootFlat, l.anchor);
+      }
+      break;
+    case Phase::Flat: {
+      const double flat = slope - shank_of(tilt, l.angles);
+      if (ankle_command < 0.0) {
+        // The controller asks the ankle to plantarflex: the heel lifts.
+        l.phase = Phase::Ball;
+        l.anchor = {l.anchor.x + sole_length * std::cos(slope),
+                    l.anchor.y + sole_length * std::sin(slope)};
+        l.angles.ankle = commanded.ankle;
+        record(static_cast<rig::Side>(leg), Event::HeelOff, l.anchor);
+      } else {
+        l.angles.ankle = flat;
+      }
+      break;
+    }
+    case Phase::Ball:
+      if (foot_of(tilt, l.angles) >= slope) {
+        // The heel came back down.
+        l.phase = Phase::Flat;
+        l.angles.ankle = slope - shank_of(tilt, l.angles);
+        l.anchor = {l.anchor.x - sole_length * std::cos(slope),
+                    l.anchor.y - sole_length * std::sin(slope)};
+        record(static_cast<rig::Side>(leg), Event::FootFlat, l.anchor);
+      }
+      l.angles.toe = slope - foot_of(tilt, l.angles);
+      break;
+    case Phase::Swing:
+      break;
+  }
+}
+
+// How deep the heel, ball or toe tip is below the ground (negative when all are above).
+double Walker::foot_depth(const LegPoints& p) const {
+  return std::max({terrain_->height(p.heel.x) - p.heel.y, terrain_->height(p.ball.x) - p.ball.y,
+                   terrain_->height(p.tip.x) - p.tip.y});
+}
+
+void Walker::clear_ground(int leg, double max_change) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const double tilt = state_.pelvis_tilt;
+  double low = l.angles.knee;
+  double high = std::min(limits_.maximum.knee, l.angles.knee + max_change);
+  auto depth = [&](double knee) {
+    rig::LegAngles a = l.angles;
+    a.knee = knee;
+    return foot_depth(rig::forward_kinematics(segments_, state_.pelvis, tilt, a)) + kSwingClearance;
+  };
+  if (depth(high) > 0.0) {  // cannot clear in one step: fold as far as allowed
+    l.angles.knee = high;
+    return;
+  }
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (low + high);
+    (depth(mid) > 0.0 ? low : high) = mid;
+  }
+  l.angles.knee = high;
+}
+
+void Walker::update_metrics(int leg, const LegPoints& p, MetricValues& m) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const double tilt = state_.pelvis_tilt;
+  const double thigh = thigh_of(tilt, l.angles);
+  double end = l.sweep_end;
+  if (l.phase == Phase::Swing) {
+    // Arrived when the thigh is where a straight leg's heel would point at the foot target.
+    const Point target{l.target_x, terrain_->height(l.target_x)};
+    end = inclination(p.hip, target) + heel_offset_;
+    l.sweep_end = end;
+  }
+  l.delta = progress(thigh, l.sweep_start, end);
+  m[static_cast<std::size_t>(Metric::Delta)] = l.delta;
+  m[static_cast<std::size_t>(Metric::Hip)] = rig::degrees(l.angles.hip);
+  m[static_cast<std::size_t>(Metric::Knee)] = rig::degrees(l.angles.knee);
+  m[static_cast<std::size_t>(Metric::Ankle)] = rig::degrees(l.angles.ankle);
+  m[static_cast<std::size_t>(Metric::Toe)] = rig::degrees(l.angles.toe);
+  m[static_cast<std::size_t>(Metric::Sole)] =
+      rig::degrees(foot_of(tilt, l.angles) - terrain_->slope(p.ankle.x));
+}
+
+void Walker::advance(double dt) {
+  if (!std::isfinite(dt) || dt < 0.0) throw std::invalid_argument("advance: dt must be >= 0");
+  const double steps = std::ceil(dt / time_step_ - 1e-9);
+  const int n = std::max(1, static_cast<int>(steps));
+  const double h = dt / n;
+  for (int i = 0; i < n && h > 0.0; ++i) step(h);
+}
+
+void Walker::step(double h) {
+  const double tilt = state_.pelvis_tilt;
+  std::array<LegPoints, 2> points;
+  std::array<MetricValues, 2> metrics{};
+  for (int leg = 0; leg < 2; ++leg) {
+    points[static_cast<std::size_t>(leg)] = rig::forward_kinematics(
+        segments_, state_.pelvis, tilt, state_.legs[static_cast<std::size_t>(leg)].angles);
+    update_metrics(leg, points[static_cast<std::size_t>(leg)], metrics[static_cast<std::size_t>(leg)]);
+  }
+  const auto other_delta = static_cast<std::size_t>(Metric::OtherDelta);
+  const auto delta = static_cast<std::size_t>(Metric::Delta);
+  metrics[0][other_delta] = metrics[1][delta];
+  metrics[1][other_delta] = metrics[0][delta];
+
+  const double follow = 1.0 - std::exp(-h / controllers_->inertia);
+  std::array<LegAngles, 2> previous;
+  std::array<LegAngles, 2> commanded;
+  std::array<double, 2> ankle_commands{};
+  for (int leg = 0; leg < 2; ++leg) {
+    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    previous[static_cast<std::size_t>(leg)] = l.angles;
+    const LegPhase phase = l.phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
+    const MetricValues& m = metrics[static_cast<std::size_t>(leg)];
+    auto command = [&](Joint joint) {
+      const int s = slot(phase, joint);
+      return controllers_->controllers[static_cast<std::size_t>(s)].evaluate(
+          m, workspaces_[static_cast<std::size_t>(s)]);
+    };
+    const double hip_rate = command(Joint::Hip);
+    const double target_velocity[4] = {
+        hip_rate * sweep_scale(l.sweep_start, l.sweep_end),
+        rig::radians(command(Joint::Knee)), rig::radians(command(Joint::Ankle)),
+        rig::radians(command(Joint::Toe))};
+    ankle_commands[static_cast<std::size_t>(leg)] = target_velocity[2];
+    double* velocity[4] = {&l.velocity.hip, &l.velocity.knee, &l.velocity.ankle, &l.velocity.toe};
+    double* angle[4] = {&l.angles.hip, &l.angles.knee, &l.angles.ankle, &l.angles.toe};
+    for (int j = 0; j < 4; ++j) {
+      const double v = std::isfinite(target_velocity[j]) ? target_velocity[j] : 0.0;
+      *velocity[j] += (v - *velocity[j]) * follow;
+      *angle[j] += *velocity[j] * h;
+    }
+    l.angles = limits_.clamp(l.angles);
+    commanded[static_cast<std::size_t>(leg)] = l.angles;
+  }
+
+  if (state_.lead < 0) {
+    // Airborne (only after an awkward start): fall until a foot touches.
+    state_.fall_velocity += kGravity * h;
+    state_.pelvis.y -= state_.fall_velocity * h;
+  } else {
+    // The leg planted first carries the pelvis, through double support too: the chain grows
+    // from its foot, so a planted foot never slides and the body's motion stays continuous.
+    settle_foot(state_.lead, commanded[static_cast<std::size_t>(state_.lead)],
+                ankle_commands[static_cast<std::size_t>(state_.lead)]);
+    place_pelvis(state_.lead);
+  }
+  for (int leg = 0; leg < 2; ++leg) {
+    if (leg == state_.lead) continue;
+    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    if (l.phase == Phase::Swing) {
+      // Swing foot: it lands once the leg arrives in front of the body; before that the knee
+      // folds just enough to keep the foot off the ground (a clearance reflex), and only a foot
+      // the reflex cannot lift touches down early.
+      LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles);
+      const bool arriving = l.delta >= kLandingDelta || state_.lead < 0;
+      if (!arriving && foot_depth(p) > -kSwingClearance) {
+        clear_ground(leg, kReflexSpeed * h);
+        p = rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles);
+      }
+      const double heel_depth = terrain_->height(p.heel.x) - p.heel.y;
+      const double ball_depth = terrain_->height(p.ball.x) - p.ball.y;
+      if (heel_depth < 0.0 && ball_depth < 0.0) continue;
+      if (heel_depth >= ball_depth) {
+        strike(leg, Phase::Heel, {p.heel.x, terrain_->height(p.heel.x)});
+      } else {
+        strike(leg, Phase::Ball, {p.ball.x, terrain_->height(p.ball.x)});
+      }
+      if (state_.lead == leg) {
+        settle_foot(leg, l.angles, 0.0);
+        place_pelvis(leg);
+        continue;
+      }
+    }
+    // The newly planted foot: hip and knee close the chain onto it (IK) while its ankle
+    // follows its controller; once it is flat, the carrying leg lifts off and hands over.
+    if (!close_chain(leg)) {
+      hand_over(state_.lead);
+      break;
+    }
+    settle_foot(leg, commanded[static_cast<std::size_t>(leg)],
+                ankle_commands[static_cast<std::size_t>(leg)]);
+    if (!close_chain(leg) || l.phase == Phase::Flat) hand_over(state_.lead);
+    break;
+  }
+  // Planted toes never dip below the ground: they bend up where the ground holds them.
+  for (int leg = 0; leg < 2; ++leg) {
+    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    if (l.phase == Phase::Swing) continue;
+    const LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles);
+    const double ground = terrain_->height(p.tip.x);
+    if (p.tip.y < ground) {
+      const double rise = std::clamp((ground - p.ball.y) / segments_.toe, -1.0, 1.0);
+      l.angles.toe = std::max(l.angles.toe, std::asin(rise) - foot_of(tilt, l.angles));
+    }
+  }
+  for (int leg = 0; leg < 2; ++leg) {
+    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    const LegAngles& before = previous[static_cast<std::size_t>(leg)];
+    l.velocity = {(l.angles.hip - before.hip) / h, (l.angles.knee - before.knee) / h,
+                  (l.angles.ankle - before.ankle) / h, (l.angles.toe - before.toe) / h};
+  }
+  state_.time += h;
+}
+
+}  // namespace fuzzygait::gait

@@ -1,0 +1,34 @@
+#include "fuzzygait/io/controller_files.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "fuzzygait/fuzzy/fll.hpp"
+#include "fuzzygait/rig/rig.hpp"
+
+namespace fuzzygait::io {
+
+void save_controller_set(const gait::ControllerSet& set, const std::filesystem::path& directory) {
+  std::filesystem::create_directories(directory);
+  nlohmann::ordered_json manifest;
+  manifest["name"] = set.name;
+  manifest["description"] = set.description;
+  manifest["inertia_s"] = set.inertia;
+  manifest["pelvis_tilt_deg"] = std::round(rig::degrees(set.pelvis_tilt) * 1e6) / 1e6;
+  nlohmann::ordered_json files;
+  for (int s = 0; s < gait::kSlotCount; ++s) {
+    const std::string name = std::string(gait::slot_name(s)) + ".fll";
+    files[std::string(gait::slot_name(s))] = name;
+    std::ofstream out(directory / name);
+    out << fuzzy::write_fll(set.controllers.at(static_cast<std::size_t>(s)).engine());
+    if (!out) throw std::runtime_error((directory / name).string() + ": cannot write");
+  }
+  manifest["controllers"] = files;
+  std::ofstream out(directory / "manifest.json");
+  out << manifest.dump(2) << "\n";
+  if (!out) throw std::runtime_error((directory / "manifest.json").string() + ": cannot write");
+}
+
+}  // namespace fuzzygait::io

@@ -1,0 +1,183 @@
+#include "fuzzygait/io/walk_csv.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <istream>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/fuzzy/fll.hpp"
+#include "fuzzygait/fuzzy/term.hpp"
+
+namespace fuzzygait::io {
+namespace {
+
+constexpr const char* kPointNames[] = {"hip", "knee", "ankle", "heel", "ball", "tip"};
+constexpr const char* kSidePrefix[] = {"l", "r"};
+
+std::vector<std::string> header() {
+  std::vector<std::string> h = {"time", "pelvis_x", "pelvis_y", "pelvis_tilt"};
+  for (const char* s : kSidePrefix) {
+    for (const char* j : {"hip", "knee", "ankle", "toe"}) h.push_back(std::string(s) + "_" + j);
+  }
+  h.push_back("l_contact");
+  h.push_back("r_contact");
+  for (const char* s : kSidePrefix) {
+    for (const char* p : kPointNames) {
+      h.push_back(std::string(s) + "_" + p + "_x");
+      h.push_back(std::string(s) + "_" + p + "_y");
+    }
+  }
+  return h;
+}
+
+std::array<rig::Point*, 6> point_fields(rig::LegPoints& p) {
+  return {&p.hip, &p.knee, &p.ankle, &p.heel, &p.ball, &p.tip};
+}
+
+void append(std::string& line, double value, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+  if (!line.empty()) line += ',';
+  line += buffer;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::string cell;
+  for (char c : line) {
+    if (c == ',') {
+      cells.push_back(cell);
+      cell.clear();
+    } else if (c != '\r') {
+      cell += c;
+    }
+  }
+  cells.push_back(cell);
+  return cells;
+}
+
+}  // namespace
+
+void write_walk_csv(std::ostream& out, const gait::Motion& motion) {
+  std::string line;
+  for (const std::string& h : header()) line += (line.empty() ? "" : ",") + h;
+  out << line << "\n";
+  for (const gait::Frame& f : motion.frames) {
+    line.clear();
+    append(line, f.time, 6);
+    append(line, f.pose.pelvis.x, 6);
+    append(line, f.pose.pelvis.y, 6);
+    append(line, rig::degrees(f.pose.pelvis_tilt), 4);
+    for (const rig::LegAngles& a : f.pose.legs) {
+      for (double v : {a.hip, a.knee, a.ankle, a.toe}) append(line, rig::degrees(v), 4);
+    }
+    line += f.contact[0] ? ",1" : ",0";
+    line += f.contact[1] ? ",1" : ",0";
+    for (rig::LegPoints p : f.points) {
+      for (const rig::Point* q : point_fields(p)) {
+        append(line, q->x, 6);
+        append(line, q->y, 6);
+      }
+    }
+    out << line << "\n";
+  }
+}
+
+gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
+  const std::string where(source);
+  std::string line;
+  if (!std::getline(in, line)) throw fuzzy::ParseError(where, 1, "the file is empty");
+  const std::vector<std::string> columns = split(line);
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < columns.size(); ++i) index[columns[i]] = i;
+  std::vector<std::size_t> wanted;
+  for (const std::string& h : header()) {
+    const auto it = index.find(h);
+    if (it == index.end()) throw fuzzy::ParseError(where, 1, "missing column '" + h + "'");
+    wanted.push_back(it->second);
+  }
+  gait::Motion motion;
+  int number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line == "\r") continue;
+    const std::vector<std::string> cells = split(line);
+    std::vector<double> v;
+    v.reserve(wanted.size());
+    for (std::size_t k = 0; k < wanted.size(); ++k) {
+      const std::size_t c = wanted[k];
+      const std::optional<double> value =
+          c < cells.size() ? fuzzy::parse_scalar(cells[c]) : std::nullopt;
+      if (!value || !std::isfinite(*value)) {
+        throw fuzzy::ParseError(where, number,
+                                "column '" + columns[c] + "': '" +
+                                    (c < cells.size() ? cells[c] : std::string()) +
+                                    "' is not a finite number");
+      }
+      v.push_back(*value);
+    }
+    gait::Frame f;
+    std::size_t k = 0;
+    f.time = v[k++];
+    f.pose.pelvis = {v[k], v[k + 1]};
+    k += 2;
+    f.pose.pelvis_tilt = rig::radians(v[k++]);
+    for (rig::LegAngles& a : f.pose.legs) {
+      for (double* field : {&a.hip, &a.knee, &a.ankle, &a.toe}) *field = rig::radians(v[k++]);
+    }
+    f.contact = {v[k] >= 0.5, v[k + 1] >= 0.5};
+    k += 2;
+    for (rig::LegPoints& p : f.points) {
+      for (rig::Point* q : point_fields(p)) {
+        q->x = v[k++];
+        q->y = v[k++];
+      }
+    }
+    motion.frames.push_back(f);
+  }
+  if (motion.frames.size() < 2) throw fuzzy::ParseError(where, number, "fewer than two frames");
+  const double span = motion.frames.back().time - motion.frames.front().time;
+  if (!(span > 0.0)) throw fuzzy::ParseError(where, number, "time does not increase");
+  motion.fps = static_cast<double>(motion.frames.size() - 1) / span;
+  return motion;
+}
+
+void write_terrain_csv(std::ostream& out, const terrain::Terrain& terrain, double x0, double x1) {
+  out << "x,y\n";
+  for (const rig::Point& p : terrain.profile(x0, x1)) {
+    std::string line;
+    append(line, p.x, 6);
+    append(line, p.y, 6);
+    out << line << "\n";
+  }
+}
+
+terrain::Terrain read_terrain_csv(std::istream& in, std::string_view source) {
+  const std::string where(source);
+  std::string line;
+  if (!std::getline(in, line) || split(line) != std::vector<std::string>{"x", "y"}) {
+    throw fuzzy::ParseError(where, 1, "expected the header 'x,y'");
+  }
+  std::vector<rig::Point> points;
+  int number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line == "\r") continue;
+    const std::vector<std::string> cells = split(line);
+    if (cells.size() != 2) throw fuzzy::ParseError(where, number, "expected two values 'x,y'");
+    const std::optional<double> x = fuzzy::parse_scalar(cells[0]);
+    const std::optional<double> y = fuzzy::parse_scalar(cells[1]);
+    if (!x || !y) throw fuzzy::ParseError(where, number, "x and y must be numbers");
+    points.push_back({*x, *y});
+  }
+  try {
+    return terrain::Terrain::polyline(points);
+  } catch (const std::invalid_argument& e) {
+    throw fuzzy::ParseError(where, number, e.what());
+  }
+}
+
+}  // namespace fuzzygait::io

@@ -1,0 +1,61 @@
+#include "fuzzygait/terrain/terrain.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace fuzzygait::terrain {
+
+Terrain::Terrain(std::vector<Point> points) : points_(std::move(points)) {}
+
+Terrain Terrain::flat() { return Terrain({{-1e6, 0.0}, {1e6, 0.0}}); }
+
+Terrain Terrain::polyline(std::vector<Point> points) {
+  if (points.size() < 2) throw std::invalid_argument("terrain needs at least two points");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y)) {
+      throw std::invalid_argument("terrain point " + std::to_string(i) + " is not finite");
+    }
+    if (i > 0 && !(points[i].x > points[i - 1].x)) {
+      throw std::invalid_argument("terrain point " + std::to_string(i) +
+                                  ": x must increase along the profile");
+    }
+  }
+  return Terrain(std::move(points));
+}
+
+std::size_t Terrain::segment(double x) const {
+  const auto it = std::upper_bound(points_.begin(), points_.end(), x,
+                                   [](double v, const Point& p) { return v < p.x; });
+  const std::size_t i = static_cast<std::size_t>(it - points_.begin());
+  return std::clamp<std::size_t>(i == 0 ? 0 : i - 1, 0, points_.size() - 2);
+}
+
+double Terrain::height(double x) const {
+  if (x <= points_.front().x) return points_.front().y;
+  if (x >= points_.back().x) return points_.back().y;
+  const std::size_t i = segment(x);
+  const Point& a = points_[i];
+  const Point& b = points_[i + 1];
+  return a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x);
+}
+
+double Terrain::slope(double x) const {
+  if (x < points_.front().x || x > points_.back().x) return 0.0;
+  const std::size_t i = segment(x);
+  const Point& a = points_[i];
+  const Point& b = points_[i + 1];
+  return std::atan2(b.y - a.y, b.x - a.x);
+}
+
+std::vector<Point> Terrain::profile(double x0, double x1) const {
+  std::vector<Point> out{{x0, height(x0)}};
+  for (const Point& p : points_) {
+    if (p.x > x0 && p.x < x1) out.push_back(p);
+  }
+  out.push_back({x1, height(x1)});
+  return out;
+}
+
+}  // namespace fuzzygait::terrain
