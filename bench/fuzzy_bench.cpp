@@ -10,7 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -71,8 +71,9 @@ class FuzzyliteSide {
  public:
   FuzzyliteSide(const fs::path& fll, const Engine& model)
       : engine_(fl::FllImporter().fromFile(fll.string())) {
-    for (const InputVariable& v : model.inputs)
+    for (const InputVariable& v : model.inputs) {
       inputs_.push_back(engine_->getInputVariable(v.name));
+    }
     for (const OutputVariable& v : model.outputs) {
       outputs_.push_back(engine_->getOutputVariable(v.name));
     }
@@ -121,8 +122,9 @@ std::string compare_outputs(const std::vector<double>& expected, const std::vect
   for (std::size_t i = 0; i < expected.size(); ++i) {
     if (same_bits(expected[i], got[i])) continue;
     identical = false;
-    const double difference =
-        std::isnan(expected[i]) != std::isnan(got[i]) ? INFINITY : std::abs(expected[i] - got[i]);
+    const double difference = std::isnan(expected[i]) != std::isnan(got[i])
+                                  ? std::numeric_limits<double>::infinity()
+                                  : std::abs(expected[i] - got[i]);
     if (!(difference <= largest)) largest = difference;
   }
   if (identical) return "identical";

@@ -10,8 +10,13 @@ if(FUZZYGAIT_WERROR)
   list(APPEND FUZZYGAIT_WARNINGS -Werror)
 endif()
 
+# Results equal fuzzylite's only if every a * b + c rounds twice, as written: no fused
+# multiply-add, which GCC and Clang would otherwise contract to on targets that have one
+# (-march=native and the like).
+set(FUZZYGAIT_FLOATING_POINT $<$<CXX_COMPILER_ID:GNU,Clang,AppleClang>:-ffp-contract=off>)
+
 function(fuzzygait_configure_target target)
-  target_compile_options(${target} PRIVATE ${FUZZYGAIT_WARNINGS})
+  target_compile_options(${target} PRIVATE ${FUZZYGAIT_WARNINGS} ${FUZZYGAIT_FLOATING_POINT})
   if(FUZZYGAIT_SANITIZE)
     target_compile_options(${target} PRIVATE
       -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)

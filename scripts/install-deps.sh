@@ -17,9 +17,19 @@ packages=(
   nodejs npm
 )
 
+# A Node.js installed otherwise counts: NodeSource's nodejs package bundles npm and conflicts with
+# Debian's npm package, so asking apt for npm there would fail.
+installed() {
+  case "$1" in
+    nodejs) command -v node >/dev/null && return 0 ;;
+    npm) command -v npm >/dev/null && return 0 ;;
+  esac
+  dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"
+}
+
 missing=()
 for p in "${packages[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+  if ! installed "$p"; then
     missing+=("$p")
   fi
 done

@@ -7,6 +7,8 @@
 int main(int argc, char** argv) {
   CLI::App app{"fuzzygait: real-time procedural gait animation driven by fuzzy controllers"};
   app.require_subcommand(1);
+  fuzzygait::cli::add_walk_command(app);
+  fuzzygait::cli::add_eval_command(app);
   fuzzygait::cli::add_fuzzy_command(app);
   fuzzygait::cli::add_tune_command(app);
   try {

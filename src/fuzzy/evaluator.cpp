@@ -54,8 +54,7 @@ void accumulate(const double* implied, std::size_t n, double* mu) {
 }
 
 void imply(TNorm implication, const double* y, double degree, std::size_t n, double* implied) {
-  if (implication == TNorm::Minimum &&
-      !std::isnan(degree)) {  // nan_min as a select, see aggregate()
+  if (implication == TNorm::Minimum && !std::isnan(degree)) {  // nan_min, see aggregate()
     for (std::size_t i = 0; i < n; ++i)
       implied[i] = y[i] < degree ? y[i] : degree;
     return;
@@ -281,6 +280,7 @@ Evaluator::Evaluator(const Engine& engine) {
   };
 
   std::vector<std::size_t> capacity(outputs_.size(), 0);
+  std::vector<bool> fuzzified(terms_.size(), false);
   for (const RuleBlock& b : engine.rule_blocks) {
     CompiledBlock block{b.enabled,
                         b.conjunction,
@@ -324,11 +324,9 @@ Evaluator::Evaluator(const Engine& engine) {
           }
           tokens.push_back(static_cast<std::int32_t>(terms_.size() + slot));
         }
-        const auto term = static_cast<std::uint32_t>(c.term);
-        if (!c.output && c.term >= 0 &&
-            std::find(fuzzified_terms_.begin(), fuzzified_terms_.end(), term) ==
-                fuzzified_terms_.end()) {
-          fuzzified_terms_.push_back(term);
+        if (!c.output && c.term >= 0 && !fuzzified[static_cast<std::size_t>(c.term)]) {
+          fuzzified[static_cast<std::size_t>(c.term)] = true;
+          fuzzified_terms_.push_back(static_cast<std::uint32_t>(c.term));
         }
       }
       std::size_t depth = 0;
@@ -485,7 +483,7 @@ Workspace Evaluator::make_workspace() const {
 double Evaluator::membership(const CompiledTerm& t, double x, Workspace& w) const {
   const double* p = parameters_.data() + t.parameters;
   const double h = t.height;
-  if (t.parameters_not_nan) {
+  if (t.parameters_not_nan) {  // else the templated shapes below, NaN parameters and all
     switch (t.kind) {
       case TermKind::Triangle:
         return triangle(x, p, h);
@@ -636,8 +634,14 @@ double Evaluator::antecedent(const CompiledRule& rule, const CompiledBlock& bloc
   return rule.weight * stack[0];
 }
 
-double Evaluator::activation_degree(const CompiledRule& rule, const CompiledBlock& block,
-                                    Workspace& w) const {
+// Hot paths are forced inline into the rule loops: a call per rule or conclusion would cost more
+// than the work.
+
+// The rule's activation degree (fuzzylite's Rule::activationDegree): a left-deep antecedent
+// folds its proposition values without a stack, any other runs its postfix program.
+[[gnu::always_inline]] inline double Evaluator::activation_degree(const CompiledRule& rule,
+                                                                  const CompiledBlock& block,
+                                                                  Workspace& w) const {
   if (!rule.left_deep) return antecedent(rule, block, w);
   const std::int32_t* code = antecedent_.data() + rule.antecedent;
   const double* values = w.proposition_values_.data();
@@ -650,14 +654,15 @@ double Evaluator::activation_degree(const CompiledRule& rule, const CompiledBloc
   return rule.weight * degree;
 }
 
+// Hedges of a conclusion, last to first; rare, so kept out of the rule loops.
 [[gnu::noinline]] double Evaluator::hedge(const CompiledProposition& p, double degree) const {
   for (std::uint32_t h = p.hedge_count; h > 0; --h)
     degree = apply(hedges_[p.hedges + h - 1], degree);
   return degree;
 }
 
-// Hot paths are forced inline into the rule loops: a call per rule or conclusion would cost more
-// than the work.
+// Adds the rule's conclusions with the activation degree (fuzzylite's Rule::trigger): to the
+// activated terms of the output, or at once to the sums of an eager weighted defuzzifier.
 [[gnu::always_inline]] inline void Evaluator::trigger(const CompiledRule& rule, double degree,
                                                       TNorm implication, Workspace& w) const {
   if (!(degree >= kTolerance)) return;  // !is_gt(degree, 0.0), NaN included
@@ -693,21 +698,7 @@ double Evaluator::activation_degree(const CompiledRule& rule, const CompiledBloc
   const CompiledRule* rules = rules_.data() + block.first_rule;
   const std::uint32_t n = block.rule_count;
   for (const CompiledRule* rule = rules; rule != rules + n; ++rule) {
-    double degree;
-    if (rule->left_deep) {  // activation_degree() inline, for the common antecedents
-      const std::int32_t* code = antecedent_.data() + rule->antecedent;
-      const double* values = w.proposition_values_.data();
-      degree = values[code[0]];
-      for (std::uint32_t i = 1; i < rule->antecedent_length; i += 2) {
-        const double value = values[code[i]];
-        degree = code[i + 1] == Rule::kAnd ? conjoin(block.conjunction, degree, value)
-                                           : disjoin(block.disjunction, degree, value);
-      }
-      degree *= rule->weight;
-    } else {
-      degree = antecedent(*rule, block, w);
-    }
-    trigger(*rule, degree, block.implication, w);
+    trigger(*rule, activation_degree(*rule, block, w), block.implication, w);
   }
 }
 
@@ -841,7 +832,8 @@ Evaluator::Aggregate Evaluator::aggregate(const CompiledOutput& o, bool defer_la
       last = n;
       sparse = false;
     }
-    const double* y = grid_values_.data() + t.grid_values;
+    // No offset of -1 (a term sampled during evaluation): that pointer arithmetic is undefined.
+    const double* y = t.grid_values < 0 ? nullptr : grid_values_.data() + t.grid_values;
     bool y_finite = t.grid_values_finite;
     if (t.grid_values < 0) {
       double* sampled = w.term_samples_.data();
@@ -938,8 +930,10 @@ double Evaluator::integral(const CompiledOutput& o, Workspace& w) const {
         }
         return x_centroid / area;
       }
-      while (first < last && mu[first] == 0.0) ++first;
-      while (last > first && mu[last - 1] == 0.0) --last;
+      while (first < last && mu[first] == 0.0)
+        ++first;
+      while (last > first && mu[last - 1] == 0.0)
+        --last;
       for (std::size_t i = first; i < last; ++i) {
         x_centroid += mu[i] * x[i];
         area += mu[i];
@@ -1049,14 +1043,17 @@ double Evaluator::weighted(const CompiledOutput& o, Workspace& w) const {
 
 void Evaluator::evaluate(std::span<const double> inputs, std::span<double> outputs,
                          Workspace& w) const {
-  for (std::size_t i = 0; i < inputs_.size(); ++i) {
+  double* input_values = w.input_values_.data();
+  const std::size_t input_count = inputs_.size();
+  for (std::size_t i = 0; i < input_count; ++i) {
     const CompiledInput& v = inputs_[i];
-    w.input_values_[i] = v.lock_range ? bound(inputs[i], v.minimum, v.maximum) : inputs[i];
+    input_values[i] = v.lock_range ? bound(inputs[i], v.minimum, v.maximum) : inputs[i];
   }
   // Inputs, and so their terms' memberships, stay fixed while the rule blocks activate.
+  double* values = w.proposition_values_.data();
   for (std::uint32_t t : fuzzified_terms_) {
     const CompiledTerm& term = terms_[t];
-    w.proposition_values_[t] = fuzzify(term, w.input_values_[term.variable], w);
+    values[t] = fuzzify(term, input_values[term.variable], w);
   }
   std::size_t slot = terms_.size();
   for (std::uint32_t index : hedged_propositions_) {
@@ -1081,7 +1078,8 @@ void Evaluator::evaluate(std::span<const double> inputs, std::span<double> outpu
       activate(block, w);
     }
   }
-  for (std::size_t o = 0; o < outputs_.size(); ++o) {
+  const std::size_t output_count = outputs_.size();
+  for (std::size_t o = 0; o < output_count; ++o) {
     defuzzify(static_cast<std::uint32_t>(o), w);
     outputs[o] = w.output_values_[o];
     w.activated_count_[o] = 0;  // empty for the next evaluation (make_workspace starts empty)

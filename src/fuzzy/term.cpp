@@ -92,7 +92,6 @@ std::optional<TermKind> term_kind_from_name(std::string_view name) {
 std::string format_scalar(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value < 0 ? "-inf" : "inf";
-  if (value == 0.0) return "0";  // also -0: FLL readers treat both alike
   char buffer[64];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   return std::string(buffer, result.ptr);

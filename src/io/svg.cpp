@@ -82,6 +82,8 @@ struct PanelData {
   std::vector<Item> items;
   std::vector<LegendEntry> legend_entries;
   std::size_t colors_used = 0;
+  std::vector<Point> view_shifts;  // animated_view(): empty when the view stays put
+  double view_period = 0.0;
 };
 
 }  // namespace detail
@@ -913,9 +915,11 @@ class PanelPainter {
     out_ += "</clipPath>\n";
     if (panel_.axes) grid_lines();
     out_ += Tag("g").set("clip-path", "url(#" + prefix_ + "c)").open() + "\n";
+    if (!panel_.view_shifts.empty()) open_moving_view();
     for (const detail::Item& item : panel_.items) {
       std::visit([this](const auto& i) { draw(i); }, item);
     }
+    if (!panel_.view_shifts.empty()) out_ += "</g>\n";
     out_ += "</g>\n";
     if (panel_.axes) axes();
     titles();
@@ -937,6 +941,32 @@ class PanelPainter {
     for (const Point& p : points)
       out.push_back(to_pixel(p));
     return out;
+  }
+
+  // A group inside the clip whose translation plays the view's shifts: the clip stays on the
+  // plot area while the contents move under it.
+  void open_moving_view() {
+    const double x_scale = layout_.plot.width / (layout_.x.max - layout_.x.min);
+    const double y_scale = layout_.plot.height / (layout_.y.max - layout_.y.min);
+    const auto translation = [&](Point shift) {
+      return px(-shift.x * x_scale) + "," + px(shift.y * y_scale);
+    };
+    std::string values;
+    for (std::size_t f = 0; f < panel_.view_shifts.size(); ++f) {
+      if (f) values += ';';
+      values += translation(panel_.view_shifts[f]);
+    }
+    out_ += Tag("g")
+                .set("transform", "translate(" + translation(panel_.view_shifts.front()) + ")")
+                .open() +
+            "\n";
+    out_ += Tag("animateTransform")
+                .set("attributeName", "transform")
+                .set("type", "translate")
+                .set("dur", format_number(panel_.view_period, 3) + "s")
+                .set("repeatCount", "indefinite")
+                .set("values", values)
+                .empty();
   }
 
   void grid_lines() {
@@ -1829,6 +1859,18 @@ Panel& Panel::animated_line(std::span<const std::vector<Point>> frames, double p
   return *this;
 }
 
+Panel& Panel::animated_view(std::span<const Point> shifts, double period_seconds) {
+  if (shifts.empty() || !(period_seconds > 0.0) || !std::isfinite(period_seconds)) {
+    throw std::invalid_argument("svg animated view: needs shifts and a positive period");
+  }
+  if (!std::all_of(shifts.begin(), shifts.end(), finite)) {
+    throw std::invalid_argument("svg animated view: shifts must be finite");
+  }
+  data_->view_shifts.assign(shifts.begin(), shifts.end());
+  data_->view_period = period_seconds;
+  return *this;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Figure.
 
@@ -1901,8 +1943,8 @@ std::string Figure::svg() const {
   }
   const int rows = places.empty() ? 0 : places.back().row + 1;
 
-  // Layouts: vertical margins shared along a row and left margins down a column, so that the
-  // plot areas line up.
+  // Layouts: vertical margins shared along a row, left margins down a column and right margins
+  // down the column a panel ends in, so that the plot areas line up.
   std::vector<PanelLayout> layouts(panels_.size());
   std::vector<Bounds> bounds(panels_.size());
   std::vector<double> row_top(static_cast<std::size_t>(rows), 0.0);
@@ -1928,12 +1970,21 @@ std::string Figure::svg() const {
     const auto c = static_cast<std::size_t>(places[i].column);
     column_left[c] = std::max(column_left[c], left_margin(panel, layout.y));
   }
+  std::vector<double> column_right(static_cast<std::size_t>(columns_), 0.0);
+  for (std::size_t i = 0; i < panels_.size(); ++i) {
+    const PanelData& panel = *panels_[i]->data_;
+    PanelLayout& layout = layouts[i];
+    const double plot_height = cell_height_ - layout.margins.top - layout.margins.bottom;
+    const auto c = static_cast<std::size_t>(places[i].column + places[i].span - 1);
+    column_right[c] = std::max(column_right[c], right_margin(panel, plot_height, &layout.color));
+  }
   for (std::size_t i = 0; i < panels_.size(); ++i) {
     const PanelData& panel = *panels_[i]->data_;
     PanelLayout& layout = layouts[i];
     layout.margins.left = column_left[static_cast<std::size_t>(places[i].column)];
     const double plot_height = cell_height_ - layout.margins.top - layout.margins.bottom;
-    layout.margins.right = right_margin(panel, plot_height, &layout.color);
+    layout.margins.right =
+        column_right[static_cast<std::size_t>(places[i].column + places[i].span - 1)];
     layout.plot = {layout.cell.left + layout.margins.left, layout.cell.top + layout.margins.top,
                    std::max(10.0, layout.cell.width - layout.margins.left - layout.margins.right),
                    std::max(10.0, plot_height)};

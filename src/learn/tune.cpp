@@ -10,6 +10,8 @@
 namespace fuzzygait::learn {
 namespace {
 
+constexpr double kMinimumInertia = 0.02;  // s: below this, joint velocities would jump
+
 double round_significant(double v, int digits) {
   if (v == 0.0 || !std::isfinite(v)) return v;
   const double magnitude = std::pow(10.0, digits - 1 - static_cast<int>(std::floor(std::log10(std::abs(v)))));
@@ -43,7 +45,23 @@ SetParameters::SetParameters(const gait::ControllerSet& base) : base_(base) {
     }
   }
   scales_.push_back(0.02);
-  start_.push_back(base.inertia);
+  start_.push_back(std::max(base.inertia, kMinimumInertia));
+  // Interior knots of the inputs of partition controllers: when along its progress a joint
+  // changes its mind.
+  for (std::size_t s = 0; s < base.controllers.size(); ++s) {
+    const fuzzy::Engine& e = base.controllers[s].engine();
+    if (!fuzzy::as_partition(e)) continue;
+    for (std::size_t i = 0; i < e.inputs.size(); ++i) {
+      const fuzzy::InputVariable& v = e.inputs[i];
+      // Only timing moves: the words of angles ("flat" is 0 degrees) keep their meaning.
+      if (v.name != "delta" && v.name != "other_delta") continue;
+      for (std::size_t k = 1; k + 1 < v.terms.size(); ++k) {
+        knots_.push_back({s, i, k});
+        scales_.push_back(0.15 * (v.maximum - v.minimum));
+        start_.push_back(v.terms[k].parameters[1]);
+      }
+    }
+  }
 }
 
 std::vector<double> SetParameters::values() const {
@@ -53,30 +71,90 @@ std::vector<double> SetParameters::values() const {
 }
 
 gait::ControllerSet SetParameters::apply(const std::vector<double>& scaled) const {
+  std::vector<double> values(scaled.size());
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = scaled[i] * scales_[i];
+  return with_values(values);
+}
+
+gait::ControllerSet SetParameters::with_values(const std::vector<double>& values) const {
   std::vector<fuzzy::Engine> engines;
   std::size_t k = 0;
   for (const gait::Controller& c : base_.controllers) {
     fuzzy::Engine e = c.engine();
     for (fuzzy::Term& t : e.outputs.at(0).terms) {
-      if (t.kind == fuzzy::TermKind::Constant) t.parameters[0] = scaled[k] * scales_[k], ++k;
+      if (t.kind == fuzzy::TermKind::Constant) t.parameters[0] = values[k++];
     }
     engines.push_back(std::move(e));
   }
-  const double inertia = std::clamp(std::abs(scaled[k] * scales_[k]), 0.005, 0.2);
+  const double inertia = std::clamp(std::abs(values[k++]), kMinimumInertia, 0.2);
+  for (const Knot& knot : knots_) {
+    fuzzy::InputVariable& v = engines[knot.slot].inputs[knot.input];
+    const double gap = 0.02 * (v.maximum - v.minimum);
+    const double low = v.terms[knot.index - 1].parameters[1] + gap;
+    const double high = v.terms[knot.index + 1].parameters[1] - gap;
+    const double at = std::clamp(values[k++], low, std::max(low, high));
+    // The knot is the peak of its term and the feet of its neighbours (a strong partition).
+    v.terms[knot.index].parameters[1] = at;
+    v.terms[knot.index - 1].parameters[2] = at;
+    v.terms[knot.index + 1].parameters[0] = at;
+  }
   return rebuild(base_, engines, inertia);
 }
 
 gait::ControllerSet SetParameters::rounded(const std::vector<double>& scaled, int significant) const {
-  std::vector<double> r(scaled.size());
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    r[i] = round_significant(scaled[i] * scales_[i], significant) / scales_[i];
+  std::vector<double> values(scaled.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    values[i] = round_significant(scaled[i] * scales_[i], significant);
   }
-  return apply(r);
+  return with_values(values);
+}
+
+double word_penalty(const gait::ControllerSet& set) {
+  // Each word promises a direction and a size: "stay" is still, "flex" bends the joint, a
+  // "fast" word is faster than its plain form, and so on. A tuned value that breaks its word's
+  // promise would mislead the artist who reads the rules.
+  double penalty = 0.0;
+  for (const gait::Controller& c : set.controllers) {
+    const fuzzy::OutputVariable& out = c.engine().outputs.at(0);
+    const double scale = 0.05 * (out.maximum - out.minimum);
+    auto value = [&out](const std::string& word, double& v) {
+      const fuzzy::Term* t = out.find_term(word);
+      if (!t || t->kind != fuzzy::TermKind::Constant) return false;
+      v = t->parameters[0];
+      return true;
+    };
+    for (const fuzzy::Term& t : out.terms) {
+      if (t.kind != fuzzy::TermKind::Constant) continue;
+      const double v = t.parameters[0];
+      const std::string& w = t.name;
+      auto has = [&w](const char* part) { return w.find(part) != std::string::npos; };
+      if (w == "stay" || w == "hold") penalty += std::max(0.0, std::abs(v) - scale) / scale;
+      const bool positive = has("flex") || has("up") || has("roll") ||
+                            (w == "slow" || w == "fast" || w == "steady" || w == "late");
+      const bool negative = has("extend") || has("down") || has("push") || has("lower") ||
+                            w == "back";
+      if (positive) penalty += std::max(0.0, -v) / scale;
+      if (negative) penalty += std::max(0.0, v) / scale;
+      const std::size_t fast = w.find("_fast");
+      double base = 0.0;
+      if (fast != std::string::npos && value(w.substr(0, fast), base)) {
+        penalty += std::max(0.0, std::abs(base) - std::abs(v)) / scale;
+      }
+      const std::size_t slow = w.find("_slow");
+      if (slow != std::string::npos && value(w.substr(0, slow), base)) {
+        penalty += std::max(0.0, std::abs(v) - std::abs(base)) / scale;
+      }
+    }
+    double slow = 0.0;
+    double fast = 0.0;
+    if (value("slow", slow) && value("fast", fast)) penalty += std::max(0.0, slow - fast) / scale;
+  }
+  return penalty;
 }
 
 double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std::string* report) {
   const terrain::Terrain ground = terrain::Terrain::flat();
-  double total = 0.0;
+  double total = 10.0 * word_penalty(set);
   for (const WalkCondition& c : options.conditions) {
     double cost = 0.0;
     try {
@@ -94,11 +172,21 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
       cost += 200.0 * std::max(0.0, 0.012 - r.min_toe_clearance) / 0.012;
       cost += 100.0 * r.cycle_time_sd + 100.0 * r.step_length_sd / c.step_length;
       cost += 2.0 * over(r.stance_percent, 58.0, 64.0);
-      cost += 2.0 * over(r.cycle_time, 0.95, 1.25);
+      // Adults walk about 100-120 steps a minute at these steps (cycles of 1.0-1.2 s).
+      cost += 50.0 * over(r.cycle_time, 1.0, 1.2);
+      // Velocities must not jump where a phase hands a joint to another controller.
+      cost += 5.0 * std::max(0.0, r.max_velocity_jump / std::max(r.typical_velocity_change, 1.0) - 1.5);
+      cost += 100.0 * std::max(0.0, r.max_slip - 0.0005) + 100.0 * r.max_penetration;
       if (c.realism) {
-        cost += r.thigh_score->rmse + r.knee_score->rmse + r.ankle_score->rmse;
-        cost += 10.0 * (3.0 - r.thigh_score->pearson - r.knee_score->pearson - r.ankle_score->pearson);
+        cost += r.thigh_score->rmse + r.knee_score->rmse + 3.0 * r.ankle_score->rmse;
+        cost += 10.0 * (2.0 - r.thigh_score->pearson - r.knee_score->pearson) +
+                20.0 * (1.0 - r.ankle_score->pearson);
         cost += over(r.knee_peak, 56.0, 68.0) + over(r.knee_peak_percent, 69.0, 77.0);
+        // The toes rest near neutral while the foot is flat and again before landing.
+        double toe = 0.0;
+        for (int k = 5; k <= 15; ++k) toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
+        for (int k = 43; k <= 50; ++k) toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
+        cost += 0.1 * toe;
       }
       if (report) {
         char line[400];

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "fuzzygait/fuzzy/evaluator.hpp"
@@ -94,6 +95,30 @@ TEST(FllFuzzRegressions, FormulaFunctionNamesInRulesRoundTrip) {
   EXPECT_EQ(engine.rule_blocks[0].rules[0].text(),
             "if (max) is t or speed is (or) and (max) is (min) then o is c");
   expect_lossless_round_trip(text);
+}
+
+// "-0" was written as "0": the engine read back compared equal (-0 == 0) but evaluated
+// differently, here a locked range clamping to the minimum's zero.
+TEST(FllFuzzRegressions, NegativeZeroSurvivesTheRoundTrip) {
+  EXPECT_EQ(format_scalar(-0.0), "-0");
+  EXPECT_EQ(format_scalar(0.0), "0");
+  const std::string text =
+      "Engine: e\nInputVariable: in\n  range: 0 1\n  term: t Triangle 0 0.5 1\n"
+      "OutputVariable: out\n  range: -0e308 1\n  lock-range: true\n  aggregation: Maximum\n"
+      "  defuzzifier: Centroid 3\n  default: -1\n  term: t Sigmoid 0.5 -0\n"
+      "RuleBlock: b\n  implication: Minimum\n  rule: if in is t then out is t with -0\n";
+  expect_lossless_round_trip(text);
+  const Engine again = read_fll(write_fll(read_fll(text)));
+  EXPECT_TRUE(std::signbit(again.outputs[0].minimum));
+  EXPECT_TRUE(std::signbit(again.outputs[0].terms[0].parameters[1]));
+  EXPECT_TRUE(std::signbit(again.rule_blocks[0].rules[0].weight));
+  const Evaluator evaluator(again);
+  Workspace workspace = evaluator.make_workspace();
+  const double input = 0.5;
+  double output = 1.0;
+  evaluator.evaluate({&input, 1}, {&output, 1}, workspace);
+  EXPECT_EQ(output, 0.0);  // the default, clamped to the range's -0
+  EXPECT_TRUE(std::signbit(output));
 }
 
 }  // namespace

@@ -3,6 +3,11 @@
 // evaluating, const and thread-safe. Everything that changes during evaluation lives in a
 // caller-owned Workspace, one per thread or per character.
 //
+// Work that does not depend on the inputs is done when compiling: the output terms of integral
+// defuzzifiers are sampled once over their grid, so an evaluation only applies implication and
+// aggregation to stored samples, and only over the samples where the activated terms are not
+// zero. Input terms are fuzzified once per evaluation, however many rules read them.
+//
 // Results equal fuzzylite 6's (same operations in the same order), including its statefulness:
 // an output's previous value (lock-previous) and the values Function terms read carry from one
 // evaluation to the next inside the Workspace, as they do inside a fuzzylite Engine.

@@ -67,7 +67,8 @@ struct Term {
 // names the term and the offending parameter.
 Term make_term(std::string name, TermKind kind, std::string_view parameter_text);
 
-// Shortest decimal text that reads back to exactly the same double; "nan", "inf", "-inf".
+// Shortest decimal text that reads back to exactly the same double, -0 included ("-0": a
+// zero's sign can decide a division's infinity); "nan", "inf", "-inf".
 std::string format_scalar(double value);
 // Parses a scalar as fuzzylite does (decimal, "nan", "inf", "-inf"); nullopt when not a number.
 std::optional<double> parse_scalar(std::string_view text);

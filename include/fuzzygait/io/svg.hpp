@@ -144,6 +144,13 @@ class Panel {
   // Every frame must have the same number of points; static viewers show the first frame.
   Panel& animated_line(std::span<const std::vector<Point>> frames, double period_seconds,
                        LineStyle style = {}, std::string label = {});
+  // Moves the view over the panel's contents in a loop, evenly over period_seconds (SMIL
+  // <animateTransform>), so a drawing can follow something that travels: at frame f the plot area
+  // shows the axis ranges moved by shifts[f] (data units). Play it with animated lines of as
+  // many frames and the same period and they keep step. Axes, texts and the legend stay put,
+  // so use it on drawings (hide_axes()) with fixed x_range and y_range; static viewers show
+  // the view of frame 0.
+  Panel& animated_view(std::span<const Point> shifts, double period_seconds);
 
   Color next_color() const;  // the palette colour the next item without a colour will get
 

@@ -32,7 +32,8 @@ struct TuneOptions {
   std::function<void(int generation, double cost)> progress;
 };
 
-// The parameters of a set: every Constant output term of every controller, and the inertia.
+// The parameters of a set: every Constant output term of every controller, the inertia, and the
+// interior knots of the partition controllers' inputs.
 class SetParameters {
  public:
   explicit SetParameters(const gait::ControllerSet& base);
@@ -42,12 +43,24 @@ class SetParameters {
   gait::ControllerSet apply(const std::vector<double>& scaled) const;
   // The set with every value rounded to `significant` significant digits.
   gait::ControllerSet rounded(const std::vector<double>& scaled, int significant) const;
+  // The set with these unscaled values (output velocities, then the inertia).
+  gait::ControllerSet with_values(const std::vector<double>& values) const;
 
  private:
+  struct Knot {
+    std::size_t slot;
+    std::size_t input;
+    std::size_t index;
+  };
   gait::ControllerSet base_;
+  std::vector<Knot> knots_;
   std::vector<double> scales_;
   std::vector<double> start_;
 };
+
+// How far the set's values stray from what their words promise ("stay" near zero, "flex"
+// positive, "fast" faster than the plain word...); 0 when every word is kept.
+double word_penalty(const gait::ControllerSet& set);
 
 // The tuning objective: lower is better. `report` receives a one-line summary per condition.
 double walk_cost(const gait::ControllerSet& set, const TuneOptions& options,

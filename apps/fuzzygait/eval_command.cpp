@@ -1,0 +1,70 @@
+// `fuzzygait eval`: the realism and contact figures of a walk CSV (DESIGN.md, "How we measure"),
+// as a table and as JSON.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "commands.hpp"
+#include "fuzzygait/gait/evaluation.hpp"
+#include "fuzzygait/io/normative.hpp"
+#include "fuzzygait/io/walk_csv.hpp"
+
+namespace fuzzygait::cli {
+
+void add_eval_command(CLI::App& app) {
+  struct Options {
+    std::string csv;
+    std::string reference = "schwartz2008_free";
+    std::string terrain;
+    double step = 0.0;
+    std::string json;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* eval = app.add_subcommand("eval", "Measure a walk CSV against normative gait data");
+  eval->add_option("walk", o->csv, "Walk CSV written by `fuzzygait walk`")->required();
+  eval->add_option("--reference", o->reference,
+                   "Normative curves: built-in name (schwartz2008_veryslow, _slow, _free, _fast, "
+                   "_veryfast) or a CSV file");
+  eval->add_option("--terrain", o->terrain,
+                   "Terrain CSV (default: the walk's .terrain.csv beside it, else flat ground)");
+  eval->add_option("--step", o->step, "Commanded step length, m, for the step error");
+  eval->add_option("--json", o->json, "Write the figures as JSON to this file ('-' for stdout)");
+  eval->callback([o]() {
+    std::ifstream in(o->csv);
+    if (!in) throw std::runtime_error(o->csv + ": cannot open the file");
+    const gait::Motion motion = io::read_walk_csv(in, o->csv);
+    std::string terrain_path = o->terrain;
+    if (terrain_path.empty()) {
+      std::filesystem::path guess(o->csv);
+      guess.replace_extension(".terrain.csv");
+      if (std::filesystem::exists(guess)) terrain_path = guess.string();
+    }
+    std::optional<terrain::Terrain> ground;
+    if (terrain_path.empty()) {
+      ground = terrain::Terrain::flat();
+    } else {
+      std::ifstream t(terrain_path);
+      if (!t) throw std::runtime_error(terrain_path + ": cannot open the file");
+      ground = io::read_terrain_csv(t, terrain_path);
+    }
+    const gait::Normative reference = io::load_normative(o->reference);
+    const std::optional<double> step = o->step > 0.0 ? std::optional<double>(o->step) : std::nullopt;
+    const gait::GaitReport report = gait::evaluate(motion, *ground, &reference, step);
+    const std::string json = gait::to_json(report);
+    if (o->json == "-") {
+      std::cout << json << "\n";
+      return;
+    }
+    std::cout << "reference: " << reference.name << "\n" << gait::to_text(report);
+    if (!o->json.empty()) {
+      std::ofstream out(o->json);
+      out << json << "\n";
+      if (!out) throw std::runtime_error(o->json + ": cannot write");
+    }
+  });
+}
+
+}  // namespace fuzzygait::cli

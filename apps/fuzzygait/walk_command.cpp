@@ -1,0 +1,156 @@
+// `fuzzygait walk`: walks a character with a controller set and writes its files: the walk CSV,
+// the terrain, a BVH, the joint-angle curves against the normative band, and the poses.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+
+#include "commands.hpp"
+#include "fuzzygait/gait/evaluation.hpp"
+#include "fuzzygait/io/normative.hpp"
+#include "fuzzygait/io/walk_csv.hpp"
+
+namespace fuzzygait::cli {
+namespace {
+
+struct WalkOptions {
+  double step = 0.70;
+  double stature = 1.75;
+  double thigh = 0.0, shank = 0.0, ankle_height = 0.0, heel = 0.0, ball = 0.0, toe = 0.0;
+  std::string style = "default";
+  std::string controllers;
+  int cycles = 10;
+  double duration = 0.0;
+  double fps = 120.0;
+  std::string start_pose = "default";
+  std::string prefix = "out/walk";
+  std::string reference = "schwartz2008_free";
+};
+
+gait::StartPose parse_start(const std::string& text) {
+  gait::StartPose start;
+  if (text == "default") return start;
+  const std::string prefix = "random:";
+  if (text.rfind(prefix, 0) == 0) {
+    const std::string seed = text.substr(prefix.size());
+    std::size_t used = 0;
+    unsigned long long value = 0;
+    try {
+      value = std::stoull(seed, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == seed.size() && !seed.empty()) {
+      start.random = true;
+      start.seed = value;
+      return start;
+    }
+  }
+  throw std::invalid_argument("--start-pose must be 'default' or 'random:SEED', got '" + text + "'");
+}
+
+// Walks until `cycles` left gait cycles have completed after the first heel strike, sampling at
+// fps; gives up (with an error) if that takes ten times as long as a slow walk should.
+gait::Motion walk_cycles(gait::Walker& walker, int cycles, double fps) {
+  gait::Motion motion;
+  motion.fps = fps;
+  motion.segments = walker.segments();
+  const double limit = 3.0 * (cycles + 2);
+  int left_strikes = 0;
+  for (std::size_t i = 0;; ++i) {
+    if (i > 0) walker.advance(1.0 / fps);
+    for (const gait::EventRecord& e : walker.events()) {
+      if (e.side == rig::Side::Left && e.event == gait::Event::HeelStrike) ++left_strikes;
+    }
+    walker.clear_events();
+    gait::Frame f;
+    f.time = static_cast<double>(i) / fps;
+    f.pose = walker.pose();
+    for (rig::Side side : rig::kSides) {
+      f.points[rig::index(side)] = walker.points(side);
+      f.contact[rig::index(side)] = walker.in_contact(side);
+    }
+    motion.frames.push_back(f);
+    if (left_strikes >= cycles + 2) break;
+    if (f.time > limit) {
+      throw std::runtime_error("the walker did not complete " + std::to_string(cycles) +
+                               " cycles in " + std::to_string(limit) + " s");
+    }
+  }
+  return motion;
+}
+
+}  // namespace
+
+void add_walk_command(CLI::App& app) {
+  auto o = std::make_shared<WalkOptions>();
+  CLI::App* walk = app.add_subcommand(
+      "walk", "Walk a character with fuzzy controllers and write its files and plots");
+  walk->add_option("--step", o->step, "Step length, metres heel to heel (default 0.70)");
+  walk->add_option("--stature", o->stature,
+                   "Body height, metres: segment lengths from anthropometric proportions");
+  walk->add_option("--thigh", o->thigh, "Thigh length, m (overrides the stature's)");
+  walk->add_option("--shank", o->shank, "Shank length, m");
+  walk->add_option("--ankle-height", o->ankle_height, "Ankle height above the sole, m");
+  walk->add_option("--heel", o->heel, "Ankle to back of the heel, m");
+  walk->add_option("--ball", o->ball, "Ankle to the ball of the foot, m");
+  walk->add_option("--toe", o->toe, "Ball of the foot to the toe tip, m");
+  walk->add_option("--style", o->style, "Built-in controller set (default, or a style)");
+  walk->add_option("--controllers", o->controllers, "Controller set folder (manifest.json + FLL)");
+  walk->add_option("--cycles", o->cycles, "Gait cycles to walk after the first (default 10)")
+      ->check(CLI::Range(2, 10000));
+  walk->add_option("--duration", o->duration, "Seconds to walk (instead of --cycles)");
+  walk->add_option("--fps", o->fps, "Frames per second of the files (default 120)")
+      ->check(CLI::Range(1.0, 2000.0));
+  walk->add_option("--start-pose", o->start_pose, "default, or random:SEED (awkward start)");
+  walk->add_option("-o,--output", o->prefix, "Prefix of the files written (default out/walk)");
+  walk->add_option("--reference", o->reference, "Normative curves for the plot and summary");
+  walk->footer(
+      "Writes PREFIX.csv (one row per frame), PREFIX.terrain.csv, PREFIX.bvh, PREFIX.svg\n"
+      "(joint angles over the gait cycle against the normative band) and PREFIX.poses.svg.");
+  walk->callback([o]() {
+    const gait::ControllerSet set = o->controllers.empty()
+                                        ? gait::ControllerSet::builtin(o->style)
+                                        : gait::ControllerSet::load(o->controllers);
+    gait::WalkerOptions options;
+    options.segments = rig::segments_from_stature(o->stature);
+    if (o->thigh > 0) options.segments.thigh = o->thigh;
+    if (o->shank > 0) options.segments.shank = o->shank;
+    if (o->ankle_height > 0) options.segments.ankle_height = o->ankle_height;
+    if (o->heel > 0) options.segments.heel = o->heel;
+    if (o->ball > 0) options.segments.ball = o->ball;
+    if (o->toe > 0) options.segments.toe = o->toe;
+    options.step_length = o->step;
+    options.start = parse_start(o->start_pose);
+    const terrain::Terrain ground = terrain::Terrain::flat();
+    gait::Walker walker(set, options, ground);
+    const gait::Motion motion = o->duration > 0.0 ? gait::record(walker, o->duration, o->fps)
+                                                  : walk_cycles(walker, o->cycles, o->fps);
+    const std::filesystem::path prefix(o->prefix);
+    if (prefix.has_parent_path()) std::filesystem::create_directories(prefix.parent_path());
+    {
+      std::ofstream csv(o->prefix + ".csv");
+      io::write_walk_csv(csv, motion);
+      if (!csv) throw std::runtime_error(o->prefix + ".csv: cannot write");
+      std::ofstream terrain_csv(o->prefix + ".terrain.csv");
+      const double x0 = motion.frames.front().pose.pelvis.x - 2.0;
+      const double x1 = motion.frames.back().pose.pelvis.x + 2.0;
+      io::write_terrain_csv(terrain_csv, ground, x0, x1);
+      if (!terrain_csv) throw std::runtime_error(o->prefix + ".terrain.csv: cannot write");
+    }
+    const gait::Normative reference = io::load_normative(o->reference);
+    std::cout << "walked " << motion.frames.size() << " frames (" << motion.frames.back().time
+              << " s) with controller set '" << set.name << "'\n";
+    try {
+      const gait::GaitReport report = gait::evaluate(motion, ground, &reference, o->step);
+      std::cout << gait::to_text(report);
+    } catch (const std::invalid_argument& e) {
+      std::cout << "not measured: " << e.what() << "\n";
+    }
+    std::cout << "wrote " << o->prefix << ".csv, " << o->prefix << ".terrain.csv\n";
+  });
+}
+
+}  // namespace fuzzygait::cli

@@ -1,0 +1,140 @@
+// The walker's contracts: determinism, planted feet that never slide, nothing below the
+// ground, the step length it is told, clear errors for bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "fuzzygait/gait/motion.hpp"
+#include "fuzzygait/gait/walker.hpp"
+
+using namespace fuzzygait;
+
+namespace {
+
+const gait::ControllerSet& default_set() {
+  static const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  return set;
+}
+
+gait::Walker make_walker(const terrain::Terrain& ground, double step = 0.70, double stature = 1.75,
+                         gait::StartPose start = {}) {
+  gait::WalkerOptions o;
+  o.segments = rig::segments_from_stature(stature);
+  o.step_length = step;
+  o.start = start;
+  return gait::Walker(default_set(), o, ground);
+}
+
+TEST(Walker, SameInputsGiveBitIdenticalOutputs) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::Walker a = make_walker(ground);
+  gait::Walker b = make_walker(ground);
+  for (int i = 0; i < 600; ++i) {
+    a.advance(1.0 / 60.0);
+    b.advance(1.0 / 60.0);
+  }
+  // Field by field, bit for bit (memcmp of the whole struct would read padding).
+  auto same = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  const gait::WalkerState& s = a.state();
+  const gait::WalkerState& t = b.state();
+  EXPECT_TRUE(same(s.time, t.time) && same(s.pelvis.x, t.pelvis.x) && same(s.pelvis.y, t.pelvis.y));
+  EXPECT_EQ(s.lead, t.lead);
+  EXPECT_EQ(s.heel_strikes, t.heel_strikes);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const gait::LegState& l = s.legs[k];
+    const gait::LegState& m = t.legs[k];
+    EXPECT_EQ(l.phase, m.phase);
+    for (auto [x, y] : {std::pair{l.angles.hip, m.angles.hip}, {l.angles.knee, m.angles.knee},
+                        {l.angles.ankle, m.angles.ankle}, {l.angles.toe, m.angles.toe},
+                        {l.velocity.hip, m.velocity.hip}, {l.velocity.knee, m.velocity.knee},
+                        {l.anchor.x, m.anchor.x}, {l.delta, m.delta}, {l.target_x, m.target_x}}) {
+      EXPECT_TRUE(same(x, y));
+    }
+  }
+  EXPECT_GE(s.heel_strikes, 10u);
+}
+
+TEST(Walker, PlantedFeetNeverSlideAndNothingGoesBelowTheGround) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::Walker w = make_walker(ground);
+  std::array<rig::Point, 2> anchor{};
+  std::array<gait::Phase, 2> phase{gait::Phase::Swing, gait::Phase::Swing};
+  for (int i = 0; i < 240 * 8; ++i) {
+    w.advance(1.0 / 240.0);
+    for (rig::Side side : rig::kSides) {
+      const int s = rig::index(side);
+      const gait::LegState& l = w.state().legs[static_cast<std::size_t>(s)];
+      const rig::LegPoints p = w.points(side);
+      for (const rig::Point& q : {p.heel, p.ball, p.tip}) {
+        ASSERT_GE(q.y, ground.height(q.x) - 1e-9) << "frame " << i;
+      }
+      if (l.phase == gait::Phase::Swing) {
+        phase[static_cast<std::size_t>(s)] = l.phase;
+        continue;
+      }
+      // The contact point sits on its anchor, and the anchor stays put while the phase lasts.
+      const rig::Point c = l.phase == gait::Phase::Ball ? p.ball : p.heel;
+      EXPECT_NEAR(c.x, l.anchor.x, 1e-9);
+      EXPECT_NEAR(c.y, l.anchor.y, 1e-9);
+      if (phase[static_cast<std::size_t>(s)] == l.phase) {
+        EXPECT_EQ(anchor[static_cast<std::size_t>(s)].x, l.anchor.x);
+        EXPECT_EQ(anchor[static_cast<std::size_t>(s)].y, l.anchor.y);
+      }
+      anchor[static_cast<std::size_t>(s)] = l.anchor;
+      phase[static_cast<std::size_t>(s)] = l.phase;
+    }
+  }
+  EXPECT_GE(w.state().heel_strikes, 12u);
+}
+
+TEST(Walker, ChangingTheStepLengthTakesEffect) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::Walker w = make_walker(ground, 0.70);
+  w.advance(4.0);
+  w.set_step_length(0.55);
+  w.clear_events();
+  w.advance(6.0);
+  std::vector<double> strikes;
+  for (const gait::EventRecord& e : w.events()) {
+    if (e.event == gait::Event::HeelStrike) strikes.push_back(e.where.x);
+  }
+  ASSERT_GE(strikes.size(), 6u);
+  for (std::size_t i = strikes.size() - 4; i < strikes.size(); ++i) {
+    EXPECT_NEAR(strikes[i] - strikes[i - 1], 0.55, 0.55 * 0.03);
+  }
+}
+
+TEST(Walker, BadInputGetsClearErrors) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::WalkerOptions o;
+  o.step_length = 3.0;  // longer than these legs reach
+  try {
+    gait::Walker w(default_set(), o, ground);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("step length must be between"), std::string::npos);
+  }
+  o.step_length = std::nan("");
+  EXPECT_THROW(gait::Walker(default_set(), o, ground), std::invalid_argument);
+  o.step_length = 0.7;
+  o.segments.shank = 0.0;  // a leg of length zero
+  try {
+    gait::Walker w(default_set(), o, ground);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'shank'"), std::string::npos);
+  }
+  gait::Walker w = make_walker(ground);
+  EXPECT_THROW(w.advance(std::nan("")), std::invalid_argument);
+  EXPECT_THROW(w.advance(-1.0), std::invalid_argument);
+  EXPECT_THROW(w.set_step_length(-0.1), std::invalid_argument);
+}
+
+TEST(Walker, ControllersRunOnTheFastPath) {
+  for (const gait::Controller& c : default_set().controllers) {
+    EXPECT_TRUE(c.fast_path()) << c.source();
+  }
+}
+
+}  // namespace

@@ -1,0 +1,31 @@
+# CTest fixture: installs tests/js's npm packages (three.js, pinned by package-lock.json) into
+# the build tree with `npm ci`, once: it runs again only when the lock file changes.
+# Without npm, or when npm ci fails (offline and not in npm's cache), it says so and counts as
+# skipped; the tests that need three.js then skip too.
+#   cmake -DNPM=<npm or empty> -DDIR=<folder with package.json and package-lock.json> -P npm_ci.cmake
+if(NOT NPM)
+  message("npm ci skipped: npm was not found when CMake configured (scripts/install-deps.sh)")
+  return()
+endif()
+file(SHA256 "${DIR}/package-lock.json" lock_hash)
+set(stamp "${DIR}/node_modules/.fuzzygait-lock-sha256")
+if(EXISTS "${stamp}")
+  file(READ "${stamp}" installed_hash)
+  if(installed_hash STREQUAL lock_hash)
+    message("three.js already installed in ${DIR}/node_modules (package-lock.json unchanged)")
+    return()
+  endif()
+endif()
+string(TIMESTAMP start "%s")
+# One quick retry: offline, the default retries would hold every ctest run for over a minute.
+execute_process(COMMAND "${NPM}" ci --prefer-offline --no-audit --no-fund --fetch-retries=1
+                        --fetch-retry-mintimeout=2000 --fetch-retry-maxtimeout=10000
+                WORKING_DIRECTORY "${DIR}" RESULT_VARIABLE result TIMEOUT 300)
+string(TIMESTAMP end "%s")
+math(EXPR seconds "${end} - ${start}")
+if(NOT result EQUAL 0)
+  message("npm ci skipped: `npm ci` in ${DIR} failed (${result}) after ${seconds} s; offline?")
+  return()
+endif()
+file(WRITE "${stamp}" "${lock_hash}")
+message("npm ci installed three.js in ${DIR}/node_modules in ${seconds} s")
