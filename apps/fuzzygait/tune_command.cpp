@@ -23,6 +23,7 @@ void add_tune_command(CLI::App& app) {
     double sigma = 0.3;
     double duration = 10.0;
     bool grid = false;
+    int recovery = 0;
   };
   auto o = std::make_shared<Options>();
   CLI::App* tune = app.add_subcommand(
@@ -38,6 +39,8 @@ void add_tune_command(CLI::App& app) {
   tune->add_option("--seed", o->seed, "Random seed (the result is deterministic for a seed)");
   tune->add_option("--sigma", o->sigma, "Initial CMA-ES step (scaled units)");
   tune->add_option("--duration", o->duration, "Seconds walked per evaluation");
+  tune->add_option("--recovery", o->recovery,
+                   "Also start from this many random poses that must settle into the gait");
   tune->add_flag("--grid", o->grid,
                  "Also walk short and long steps and small and tall bodies (contact and timing)");
   tune->callback([o]() {
@@ -56,6 +59,9 @@ void add_tune_command(CLI::App& app) {
       options.conditions.push_back({1.75, 0.85, false});
       options.conditions.push_back({1.50, 0.60, false});
       options.conditions.push_back({2.00, 0.80, false});
+    }
+    for (int seed = 0; seed < o->recovery; ++seed) {
+      options.recovery_seeds.push_back(1000 + static_cast<std::uint64_t>(seed));
     }
     options.progress = [](int generation, double cost) {
       if (generation % 10 == 0) std::cerr << "generation " << generation << ": cost " << cost << "\n";

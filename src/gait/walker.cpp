@@ -151,7 +151,9 @@ void Walker::start(const StartPose& start_pose) {
   LegState& left = state_.legs[0];
   LegState& right = state_.legs[1];
   if (start_pose.random) {
-    std::uint64_t x = start_pose.seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull;
+    // Seeds hashed apart first, so nearby seeds do not walk the same sequence.
+    std::uint64_t x = (start_pose.seed ^ 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 31)) * 0x94D049BB133111EBull;
     auto uniform = [&x](double low, double high) {  // splitmix64: the same on every platform
       x += 0x9E3779B97F4A7C15ull;
       std::uint64_t z = x;
@@ -160,11 +162,20 @@ void Walker::start(const StartPose& start_pose) {
       z ^= z >> 31;
       return low + (high - low) * static_cast<double>(z >> 11) * 0x1.0p-53;
     };
-    for (LegState& leg : state_.legs) {
-      leg.angles.hip = uniform(limits_.minimum.hip, limits_.maximum.hip);
-      leg.angles.knee = uniform(limits_.minimum.knee, limits_.maximum.knee);
-      leg.angles.ankle = uniform(limits_.minimum.ankle, limits_.maximum.ankle);
-      leg.angles.toe = uniform(limits_.minimum.toe, limits_.maximum.toe);
+    // Any angles within the joint limits, as long as each foot is the lowest part of its leg
+    // (the feet near the ground, not a kneeling start).
+    for (int attempt = 0; attempt < 10000; ++attempt) {
+      bool feet_lowest = true;
+      for (LegState& leg : state_.legs) {
+        leg.angles.hip = uniform(limits_.minimum.hip, limits_.maximum.hip);
+        leg.angles.knee = uniform(limits_.minimum.knee, limits_.maximum.knee);
+        leg.angles.ankle = uniform(limits_.minimum.ankle, limits_.maximum.ankle);
+        leg.angles.toe = uniform(limits_.minimum.toe, limits_.maximum.toe);
+        const LegPoints p = rig::forward_kinematics(segments_, {0.0, 0.0}, tilt, leg.angles);
+        const double foot = std::min({p.heel.y, p.ball.y, p.tip.y});
+        feet_lowest = feet_lowest && foot < p.knee.y - 0.15 && p.ankle.y < p.knee.y;
+      }
+      if (feet_lowest) break;
     }
   } else {
     // Mid stance on the right foot, the left leg swinging past it.
@@ -307,6 +318,8 @@ bool Walker::close_chain(int leg) {
   // inclination.
   const double shank_inclination = std::remainder(
       std::atan2(target.y - knee.y, target.x - knee.x) - std::atan2(wn, we), 2.0 * std::numbers::pi);
+  // The knee cannot bend backwards: a chain that needs it is out of reach.
+  if (thigh - shank_inclination < -1e-9) return false;
   l.angles.hip = thigh + tilt;
   l.angles.knee = std::max(0.0, thigh - shank_inclination);
   if (l.phase == Phase::Flat) {
@@ -334,8 +347,8 @@ void Walker::settle_foot(int leg, const LegAngles& commanded, double ankle_comma
       break;
     case Phase::Flat: {
       const double flat = slope - shank_of(tilt, l.angles);
-      if (ankle_command < 0.0) {
-        // The controller asks the ankle to plantarflex: the heel lifts.
+      if (ankle_command < 0.0 && commanded.ankle < flat) {
+        // The controller asks the ankle to plantarflex, and it has: the heel lifts.
         l.phase = Phase::Ball;
         l.anchor = {l.anchor.x + sole_length * std::cos(slope),
                     l.anchor.y + sole_length * std::sin(slope)};
@@ -371,6 +384,25 @@ double Walker::foot_depth(const LegPoints& p) const {
 void Walker::clear_ground(int leg, double max_change) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
   const double tilt = state_.pelvis_tilt;
+  // A knee that would touch the ground (a deep crouch after an awkward start) swings the thigh
+  // forward first: folding the knee cannot lift it.
+  auto knee_depth = [&](double hip) {
+    rig::LegAngles a = l.angles;
+    a.hip = hip;
+    const LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt, a);
+    return terrain_->height(p.knee.x) - p.knee.y + kSwingClearance;
+  };
+  if (knee_depth(l.angles.hip) > 0.0) {
+    double low = l.angles.hip;
+    double high = std::min(limits_.maximum.hip, tilt + std::numbers::pi / 2.0);
+    if (knee_depth(high) <= 0.0) {
+      for (int i = 0; i < 40; ++i) {
+        const double mid = 0.5 * (low + high);
+        (knee_depth(mid) > 0.0 ? low : high) = mid;
+      }
+    }
+    l.angles.hip = std::max(l.angles.hip, high);
+  }
   double low = l.angles.knee;
   double high = std::min(limits_.maximum.knee, l.angles.knee + max_change);
   auto depth = [&](double knee) {
@@ -483,7 +515,8 @@ void Walker::step(double h) {
       // the reflex cannot lift touches down early.
       LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles);
       const bool arriving = l.delta >= kLandingDelta || state_.lead < 0;
-      if (!arriving && foot_depth(p) > -kSwingClearance) {
+      const double knee_gap = p.knee.y - terrain_->height(p.knee.x);
+      if ((!arriving && foot_depth(p) > -kSwingClearance) || knee_gap < kSwingClearance) {
         clear_ground(leg, kReflexSpeed * h);
         p = rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles);
       }
@@ -509,13 +542,27 @@ void Walker::step(double h) {
     }
     settle_foot(leg, commanded[static_cast<std::size_t>(leg)],
                 ankle_commands[static_cast<std::size_t>(leg)]);
-    if (!close_chain(leg) || l.phase == Phase::Flat) hand_over(state_.lead);
+    bool reached = close_chain(leg);
+    if (reached && l.phase == Phase::Ball && foot_of(tilt, l.angles) >= terrain_->slope(l.anchor.x)) {
+      // The chain closed with the heel back on the ground.
+      settle_foot(leg, l.angles, 0.0);
+      reached = close_chain(leg);
+    }
+    if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball) hand_over(state_.lead);
     break;
   }
-  // Planted toes never dip below the ground: they bend up where the ground holds them.
+  // A foot that has just lifted off can sit a hair below the ground once the other foot takes
+  // the pelvis: lift it at once.
+  for (int leg = 0; leg < 2; ++leg) {
+    const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    if (l.phase == Phase::Swing && state_.lead >= 0 &&
+        foot_depth(rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles)) > 0.0) {
+      clear_ground(leg, limits_.maximum.knee);
+    }
+  }
+  // Toes never dip below the ground: they bend up where the ground holds them.
   for (int leg = 0; leg < 2; ++leg) {
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-    if (l.phase == Phase::Swing) continue;
     const LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles);
     const double ground = terrain_->height(p.tip.x);
     if (p.tip.y < ground) {

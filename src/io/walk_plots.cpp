@@ -569,10 +569,15 @@ svg::Figure plot_gait_curves(const gait::GaitReport& report, const gait::Normati
                   {.size = 10, .color = walk, .anchor = svg::Anchor::Middle, .dy = -13});
     }
   }
-  figure.note(
+  std::string note =
       "The hip is drawn as the thigh's inclination to the vertical (hip flexion minus pelvic "
-      "tilt), which is what is compared, so the pelvis convention does not matter. RMSE and "
-      "Pearson r compare the mean curves; the toe (ball of the foot) has no reference curve.");
+      "tilt), which is what is compared, so the pelvis convention does not matter.";
+  if (reference) {
+    note +=
+        " RMSE and Pearson r compare the mean curves; the toe (ball of the foot) has no "
+        "reference curve.";
+  }
+  figure.note(note);
   return figure;
 }
 
@@ -781,6 +786,7 @@ svg::Figure plot_filmstrip(const gait::Motion& motion, const terrain::Terrain& t
       .x_range(0, 100)
       .x_ticks({0, 20, 40, 60, 80, 100});
   double highest = 10.0;  // mm
+  double deepest = 0.0;
   for (std::size_t side = 0; side < 2; ++side) {
     std::vector<double> x;
     std::vector<double> heel;
@@ -795,13 +801,16 @@ svg::Figure plot_filmstrip(const gait::Motion& motion, const terrain::Terrain& t
     clearance.line(x, heel, {.color = color, .width = 1.6, .dash = svg::Dash::Dashed},
                    name + "heel");
     clearance.line(x, tip, {.color = color, .width = 1.8}, name + "toe tip");
-    for (const double h : heel)
-      highest = std::max(highest, h);
-    for (const double h : tip)
-      highest = std::max(highest, h);
+    for (const std::vector<double>* heights : {&heel, &tip}) {
+      for (const double h : *heights) {
+        highest = std::max(highest, h);
+        deepest = std::min(deepest, h);
+      }
+    }
   }
   // Headroom for the legend above the curves.
-  clearance.y_range(-0.05 * highest, 1.45 * highest);
+  const double span = highest - deepest;
+  clearance.y_range(deepest - 0.05 * span, highest + 0.6 * span);
   clearance.horizontal_line(0.0, {.color = kGroundLine, .width = 1});
   // The lowest foot point in the middle of each swing, as the evaluation measures clearance.
   for (std::size_t side = 0; side < 2; ++side) {
@@ -921,8 +930,8 @@ svg::Figure plot_walk_animation(const gait::Motion& motion, const terrain::Terra
   const double shown_width =
       options.follow ? (options.view_width > 0.0 ? options.view_width : 4.0 * leg) : x1 - x0;
   const double plot_width = 940.0;
-  figure.panel_size(960.0,
-                    std::clamp(plot_width * (top - bottom) / shown_width, 200.0, 470.0) + 40.0);
+  const double panel_height = std::clamp(plot_width * (top - bottom) / shown_width, 200.0, 470.0);
+  figure.panel_size(960.0, panel_height + 40.0);
 
   // The fill reaches below the view wherever it travels (down, on a descent).
   double lowest_view = bottom;
@@ -941,11 +950,14 @@ svg::Figure plot_walk_animation(const gait::Motion& motion, const terrain::Terra
     neck.push_back(stick.neck);
     head.push_back(stick.head);
   }
-  panel.animated_line(legs[0], period, {.color = kLeftLeg, .width = 3.2});
-  panel.animated_line(trunk, period, {.color = kBody, .width = 7.0});
-  panel.animated_line(neck, period, {.color = kBody, .width = 3.2});
-  panel.animated_line(head, period, {.color = kBody, .width = 3.2});
-  panel.animated_line(legs[1], period, {.color = kRightLeg, .width = 3.2});
+  // Thinner strokes when the walker is drawn small (the whole path in view).
+  const double pixels_per_metre = std::min(plot_width / shown_width, panel_height / (top - bottom));
+  const double line = 3.2 * std::clamp(pixels_per_metre / 150.0, 0.5, 1.0);
+  panel.animated_line(legs[0], period, {.color = kLeftLeg, .width = line});
+  panel.animated_line(trunk, period, {.color = kBody, .width = 2.2 * line});
+  panel.animated_line(neck, period, {.color = kBody, .width = line});
+  panel.animated_line(head, period, {.color = kBody, .width = line});
+  panel.animated_line(legs[1], period, {.color = kRightLeg, .width = line});
   if (options.follow) panel.animated_view(shifts, period);
   return figure;
 }

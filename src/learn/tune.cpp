@@ -129,7 +129,7 @@ double word_penalty(const gait::ControllerSet& set) {
       const std::string& w = t.name;
       auto has = [&w](const char* part) { return w.find(part) != std::string::npos; };
       if (w == "stay" || w == "hold") penalty += std::max(0.0, std::abs(v) - scale) / scale;
-      const bool positive = has("flex") || has("up") || has("roll") ||
+      const bool positive = has("flex") || has("up") || has("roll") || has("settle") ||
                             (w == "slow" || w == "fast" || w == "steady" || w == "late");
       const bool negative = has("extend") || has("down") || has("push") || has("lower") ||
                             w == "back";
@@ -152,9 +152,54 @@ double word_penalty(const gait::ControllerSet& set) {
   return penalty;
 }
 
+// Recovery from an awkward start: the walk must stay sound and settle into steps of the
+// commanded length within three steps. Returns 0 when it does.
+double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::string* report) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::WalkerOptions wo;
+  wo.start.random = true;
+  wo.start.seed = seed;
+  double cost = 0.0;
+  std::vector<double> strikes;
+  try {
+    gait::Walker walker(set, wo, ground);
+    for (int i = 0; i < 8 * 60; ++i) {
+      walker.advance(1.0 / 60.0);
+      for (rig::Side side : rig::kSides) {
+        const rig::LegPoints p = walker.points(side);
+        for (const rig::Point& q : {p.knee, p.heel, p.ball, p.tip}) {
+          if (!std::isfinite(q.y) || q.y < ground.height(q.x) - 1e-6) cost = 100.0;
+        }
+      }
+      for (const gait::EventRecord& e : walker.events()) {
+        if (e.event == gait::Event::HeelStrike || e.event == gait::Event::ForefootStrike) {
+          strikes.push_back(e.where.x);
+        }
+      }
+      walker.clear_events();
+      if (cost > 0.0) break;
+    }
+  } catch (const std::exception&) {
+    cost = 100.0;
+  }
+  // Steps after the third must be within 5 % of the command; each missing or wrong one costs.
+  int wrong = 0;
+  for (std::size_t k = 4; k < 10; ++k) {
+    if (k >= strikes.size() || std::abs(strikes[k] - strikes[k - 1] - wo.step_length) > 0.05 * wo.step_length) {
+      ++wrong;
+    }
+  }
+  cost += 5.0 * wrong;
+  if (report && cost > 0.0) {
+    *report += "random start " + std::to_string(seed) + ": cost " + std::to_string(cost) + "\n";
+  }
+  return cost;
+}
+
 double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std::string* report) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   double total = 10.0 * word_penalty(set);
+  for (std::uint64_t seed : options.recovery_seeds) total += recovery_cost(set, seed, report);
   for (const WalkCondition& c : options.conditions) {
     double cost = 0.0;
     try {

@@ -379,3 +379,56 @@ TEST(Svg, SavesToAFile) {
   EXPECT_EQ(text.str(), figure.svg());
   EXPECT_THROW(figure.save("/nonexistent-folder/x.svg"), std::runtime_error);
 }
+
+// A view that travels with a drawing: the contents move under a fixed clip, in step with the
+// animated lines, and static viewers get the first frame's view.
+TEST(Svg, AnimatedViewMovesTheContentsUnderTheClip) {
+  svg::Figure figure;
+  figure.columns(1).panel_size(400, 200);
+  svg::Panel& panel = figure.add_panel();
+  panel.hide_axes().x_range(0, 4).y_range(0, 2);
+  const svg::Point ground[] = {{0, 0.5}, {10, 0.5}};
+  panel.line(ground);
+  std::vector<std::vector<svg::Point>> walker;
+  std::vector<svg::Point> shifts;
+  for (int f = 0; f < 5; ++f) {
+    walker.push_back({{1.0 + f, 0.5}, {1.0 + f, 1.5}});
+    shifts.push_back({1.0 * f, 0.0});
+  }
+  panel.animated_line(walker, 2.0).animated_view(shifts, 2.0);
+  const std::string text = figure.svg();
+  EXPECT_EQ(check_xml(text), "");
+  EXPECT_EQ(count(text, "<animateTransform "), 1u);
+  EXPECT_EQ(count(text, "dur=\"2s\""), 2u);
+  // One data unit is (400 - 10 - 14) / 4 = 94 pixels: the view moves left by that much per
+  // frame, as fast as the walker, who so stays in the middle; it starts unmoved.
+  EXPECT_THAT(text, HasSubstr("values=\"0,0;-94,0;-188,0;-282,0;-376,0\""));
+  EXPECT_THAT(text, HasSubstr("transform=\"translate(0,0)\""));
+  // The moving group sits inside the clipped one.
+  EXPECT_LT(text.find("clip-path="), text.find("<animateTransform "));
+  EXPECT_EQ(text, figure.svg());
+  const svg::Point bad[] = {{0, std::nan("")}};
+  EXPECT_THROW(panel.animated_view(bad, 1.0), std::invalid_argument);
+  EXPECT_THROW(panel.animated_view(shifts, 0.0), std::invalid_argument);
+  EXPECT_THROW(panel.animated_view({}, 1.0), std::invalid_argument);
+}
+
+// Plot areas line up down a column on both sides, even when one panel's legend sits beside it.
+TEST(Svg, PlotAreasLineUpDownAColumn) {
+  svg::Figure figure;
+  figure.columns(1);
+  const double x[] = {0, 1};
+  figure.add_panel().line(x, x, {}, "a long legend entry").legend(svg::LegendPlace::Right);
+  figure.add_panel().line(x, x);
+  const std::string text = figure.svg();
+  const std::regex clip(
+      "<clipPath id=\"p\\dc\"><rect x=\"([0-9.]+)\" y=\"[0-9.]+\" "
+      "width=\"([0-9.]+)\"");
+  std::vector<std::string> boxes;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), clip); it != std::sregex_iterator();
+       ++it) {
+    boxes.push_back((*it)[1].str() + " " + (*it)[2].str());
+  }
+  ASSERT_EQ(boxes.size(), 2u);
+  EXPECT_EQ(boxes[0], boxes[1]);
+}

@@ -14,8 +14,8 @@
 //                    foot never slides, and the body moves on without a jerk at heel strike.
 //   double support   the newly planted leg's hip and knee close the chain by two-link IK onto
 //                    its heel (the only IK in the system) while its ankle lowers the forefoot;
-//                    once that foot is flat, the trailing leg lifts off (toe off) and the new
-//                    leg carries the pelvis.
+//                    once that foot is flat (or, landing on the forefoot, at once), the trailing
+//                    leg lifts off (toe off) and the new leg carries the pelvis.
 //   joint velocity   follows the controller's command with the set's inertia time constant, so
 //                    velocities never jump, even where a phase hands a joint to another controller.
 #pragma once
@@ -67,7 +67,7 @@ struct WalkerState {
 
 struct StartPose {
   // Random joint angles within the joint limits (seeded, deterministic) instead of the default
-  // mid-stride pose; the lower foot is put on the ground.
+  // mid-stride pose, each foot the lowest point of its leg; the lower foot is put on the ground.
   bool random = false;
   std::uint64_t seed = 0;
 };

@@ -23,6 +23,7 @@ struct WalkCondition {
 struct TuneOptions {
   std::vector<WalkCondition> conditions = {{1.75, 0.70, true}};
   gait::Normative reference;
+  std::vector<std::uint64_t> recovery_seeds;  // random starts that must settle into the gait
   double duration = 10.0;  // s per walk
   double fps = 120.0;
   int generations = 200;
