@@ -18,7 +18,7 @@ void add_tune_command(CLI::App& app) {
     std::string reference = "schwartz2008_free";
     int generations = 200;
     int threads = 2;
-    int digits = 2;
+    int digits = 3;
     std::uint64_t seed = 1;
     double sigma = 0.3;
     double duration = 10.0;

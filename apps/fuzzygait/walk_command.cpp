@@ -9,11 +9,15 @@
 
 #include "commands.hpp"
 #include "fuzzygait/gait/evaluation.hpp"
+#include "fuzzygait/io/bvh.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
+#include "fuzzygait/io/walk_plots.hpp"
 
 namespace fuzzygait::cli {
 namespace {
+
+namespace svg = io::svg;
 
 struct WalkOptions {
   double step = 0.70;
@@ -140,16 +144,38 @@ void add_walk_command(CLI::App& app) {
       io::write_terrain_csv(terrain_csv, ground, x0, x1);
       if (!terrain_csv) throw std::runtime_error(o->prefix + ".terrain.csv: cannot write");
     }
-    const gait::Normative reference = io::load_normative(o->reference);
+    {
+      std::ofstream bvh(o->prefix + ".bvh");
+      io::write_bvh(bvh, motion);
+      if (!bvh) throw std::runtime_error(o->prefix + ".bvh: cannot write");
+    }
     std::cout << "walked " << motion.frames.size() << " frames (" << motion.frames.back().time
               << " s) with controller set '" << set.name << "'\n";
+    std::vector<std::string> written = {o->prefix + ".csv", o->prefix + ".terrain.csv",
+                                        o->prefix + ".bvh"};
+    const gait::Normative reference = io::load_normative(o->reference);
     try {
       const gait::GaitReport report = gait::evaluate(motion, ground, &reference, o->step);
-      std::cout << gait::to_text(report);
+      std::cout << "against " << reference.name << ":\n" << gait::to_text(report);
+      io::plot_gait_curves(report, &reference, {.title = "fuzzygait walk, " + set.name})
+          .save(o->prefix + ".svg");
+      written.push_back(o->prefix + ".svg");
     } catch (const std::invalid_argument& e) {
-      std::cout << "not measured: " << e.what() << "\n";
+      std::cout << "not measured, no curves: " << e.what() << "\n";
     }
-    std::cout << "wrote " << o->prefix << ".csv, " << o->prefix << ".terrain.csv\n";
+    try {
+      const svg::Figure animation = io::plot_walk_animation(motion, ground);
+      const svg::Figure filmstrip = io::plot_filmstrip(motion, ground);
+      std::ofstream poses(o->prefix + ".poses.svg");
+      poses << svg::stack_figures({&animation, &filmstrip});
+      if (!poses) throw std::runtime_error(o->prefix + ".poses.svg: cannot write");
+      written.push_back(o->prefix + ".poses.svg");
+    } catch (const std::invalid_argument& e) {
+      std::cout << "no poses: " << e.what() << "\n";
+    }
+    std::cout << "wrote";
+    for (const std::string& f : written) std::cout << " " << f;
+    std::cout << "\n";
   });
 }
 

@@ -332,7 +332,7 @@ bool Walker::close_chain(int leg) {
 
 // The planted foot's phase rules for its ankle and toe (see the header), given the ankle angle
 // the controller integrated to.
-void Walker::settle_foot(int leg, const LegAngles& commanded, double ankle_command) {
+void Walker::settle_foot(int leg, const LegAngles& commanded) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
   const double tilt = state_.pelvis_tilt;
   const double slope = terrain_->slope(l.anchor.x);
@@ -347,8 +347,9 @@ void Walker::settle_foot(int leg, const LegAngles& commanded, double ankle_comma
       break;
     case Phase::Flat: {
       const double flat = slope - shank_of(tilt, l.angles);
-      if (ankle_command < 0.0 && commanded.ankle < flat) {
-        // The controller asks the ankle to plantarflex, and it has: the heel lifts.
+      if (commanded.ankle < flat) {
+        // The controller lets the ankle dorsiflex slower than the shank rolls over the foot:
+        // the heel lifts (the calf holds the shin back).
         l.phase = Phase::Ball;
         l.anchor = {l.anchor.x + sole_length * std::cos(slope),
                     l.anchor.y + sole_length * std::sin(slope)};
@@ -467,7 +468,6 @@ void Walker::step(double h) {
   const double follow = 1.0 - std::exp(-h / controllers_->inertia);
   std::array<LegAngles, 2> previous;
   std::array<LegAngles, 2> commanded;
-  std::array<double, 2> ankle_commands{};
   for (int leg = 0; leg < 2; ++leg) {
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
     previous[static_cast<std::size_t>(leg)] = l.angles;
@@ -483,7 +483,6 @@ void Walker::step(double h) {
         hip_rate * sweep_scale(l.sweep_start, l.sweep_end),
         rig::radians(command(Joint::Knee)), rig::radians(command(Joint::Ankle)),
         rig::radians(command(Joint::Toe))};
-    ankle_commands[static_cast<std::size_t>(leg)] = target_velocity[2];
     double* velocity[4] = {&l.velocity.hip, &l.velocity.knee, &l.velocity.ankle, &l.velocity.toe};
     double* angle[4] = {&l.angles.hip, &l.angles.knee, &l.angles.ankle, &l.angles.toe};
     for (int j = 0; j < 4; ++j) {
@@ -502,8 +501,7 @@ void Walker::step(double h) {
   } else {
     // The leg planted first carries the pelvis, through double support too: the chain grows
     // from its foot, so a planted foot never slides and the body's motion stays continuous.
-    settle_foot(state_.lead, commanded[static_cast<std::size_t>(state_.lead)],
-                ankle_commands[static_cast<std::size_t>(state_.lead)]);
+    settle_foot(state_.lead, commanded[static_cast<std::size_t>(state_.lead)]);
     place_pelvis(state_.lead);
   }
   for (int leg = 0; leg < 2; ++leg) {
@@ -529,7 +527,7 @@ void Walker::step(double h) {
         strike(leg, Phase::Ball, {p.ball.x, terrain_->height(p.ball.x)});
       }
       if (state_.lead == leg) {
-        settle_foot(leg, l.angles, 0.0);
+        settle_foot(leg, l.angles);
         place_pelvis(leg);
         continue;
       }
@@ -540,12 +538,11 @@ void Walker::step(double h) {
       hand_over(state_.lead);
       break;
     }
-    settle_foot(leg, commanded[static_cast<std::size_t>(leg)],
-                ankle_commands[static_cast<std::size_t>(leg)]);
+    settle_foot(leg, commanded[static_cast<std::size_t>(leg)]);
     bool reached = close_chain(leg);
     if (reached && l.phase == Phase::Ball && foot_of(tilt, l.angles) >= terrain_->slope(l.anchor.x)) {
       // The chain closed with the heel back on the ground.
-      settle_foot(leg, l.angles, 0.0);
+      settle_foot(leg, l.angles);
       reached = close_chain(leg);
     }
     if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball) hand_over(state_.lead);

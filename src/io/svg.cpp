@@ -2049,4 +2049,40 @@ void Figure::save(const std::filesystem::path& path) const {
   }
 }
 
+std::string stack_figures(const std::vector<const Figure*>& figures) {
+  double width = 0.0;
+  double height = 0.0;
+  std::string body;
+  for (const Figure* const& figure : figures) {
+    std::string text = figure->svg();
+    // Our own documents: an XML declaration, then <svg ... width="W" height="H" ...>.
+    const std::size_t root = text.find("<svg ");
+    const auto attribute = [&text, root](const std::string& name) {
+      const std::size_t at = text.find(" " + name + "=\"", root);
+      return std::stod(text.substr(at + name.size() + 3));
+    };
+    const double w = attribute("width");
+    const double h = attribute("height");
+    text = text.substr(root);
+    // Element ids (clip paths, gradients) are unique per figure only: prefix them.
+    const std::string prefix = "f" + std::to_string(&figure - figures.data()) + "-";
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"id=\"", "id=\"" + prefix},
+                                   {"url(#", "url(#" + prefix},
+                                   {"href=\"#", "href=\"#" + prefix}}) {
+      for (std::size_t at = text.find(from); at != std::string::npos;
+           at = text.find(from, at + to.size())) {
+        text.replace(at, from.size(), to);
+      }
+    }
+    text.insert(5, "x=\"0\" y=\"" + format_number(height) + "\" ");
+    body += text;
+    width = std::max(width, w);
+    height += h;
+  }
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
+         "xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"" +
+         format_number(width) + "\" height=\"" + format_number(height) + "\" viewBox=\"0 0 " +
+         format_number(width) + " " + format_number(height) + "\">\n" + body + "</svg>\n";
+}
+
 }  // namespace fuzzygait::io::svg

@@ -139,6 +139,29 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
     motion.frames.push_back(f);
   }
   if (motion.frames.size() < 2) throw fuzzy::ParseError(where, number, "fewer than two frames");
+  // The CSV holds no segment lengths: measure them on the first frame's left leg.
+  const rig::LegPoints& p = motion.frames.front().points[0];
+  auto distance = [](rig::Point a, rig::Point b) { return std::hypot(b.x - a.x, b.y - a.y); };
+  rig::Segments& s = motion.segments;
+  s.thigh = distance(p.hip, p.knee);
+  s.shank = distance(p.knee, p.ankle);
+  s.toe = distance(p.ball, p.tip);
+  const double sole = distance(p.heel, p.ball);
+  if (sole > 0.0) {
+    // The ankle over the sole line: its height, and where its foot falls between heel and ball.
+    const double ux = (p.ball.x - p.heel.x) / sole;
+    const double uy = (p.ball.y - p.heel.y) / sole;
+    const double along = (p.ankle.x - p.heel.x) * ux + (p.ankle.y - p.heel.y) * uy;
+    s.heel = along;
+    s.ball = sole - along;
+    s.ankle_height = std::abs((p.ankle.x - p.heel.x) * uy - (p.ankle.y - p.heel.y) * ux);
+  }
+  try {
+    rig::validate(s);
+  } catch (const std::invalid_argument& e) {
+    throw fuzzy::ParseError(where, 2, std::string("the leg's points do not make a plausible rig: ") +
+                                          e.what());
+  }
   const double span = motion.frames.back().time - motion.frames.front().time;
   if (!(span > 0.0)) throw fuzzy::ParseError(where, number, "time does not increase");
   motion.fps = static_cast<double>(motion.frames.size() - 1) / span;

@@ -116,7 +116,7 @@ double word_penalty(const gait::ControllerSet& set) {
   double penalty = 0.0;
   for (const gait::Controller& c : set.controllers) {
     const fuzzy::OutputVariable& out = c.engine().outputs.at(0);
-    const double scale = 0.05 * (out.maximum - out.minimum);
+    const double scale = 0.02 * (out.maximum - out.minimum);
     auto value = [&out](const std::string& word, double& v) {
       const fuzzy::Term* t = out.find_term(word);
       if (!t || t->kind != fuzzy::TermKind::Constant) return false;

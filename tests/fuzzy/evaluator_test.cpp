@@ -10,18 +10,7 @@
 
 #include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "support/allocation_counter.hpp"
 
 using namespace fuzzygait::fuzzy;
 
@@ -195,12 +184,12 @@ RuleBlock: r
   const Evaluator evaluator(engine);
   Workspace w = evaluator.make_workspace();
   std::vector<double> out(2);
-  const long before = g_allocations.load();
+  const long before = fuzzygait::testing::allocation_count();
   for (int i = 0; i <= 100; ++i) {
     const double a = i / 100.0;
     evaluator.evaluate(std::span<const double>(&a, 1), out, w);
   }
-  EXPECT_EQ(g_allocations.load(), before);
+  EXPECT_EQ(fuzzygait::testing::allocation_count(), before);
 }
 
 }  // namespace

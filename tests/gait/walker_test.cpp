@@ -7,6 +7,7 @@
 
 #include "fuzzygait/gait/motion.hpp"
 #include "fuzzygait/gait/walker.hpp"
+#include "support/allocation_counter.hpp"
 
 using namespace fuzzygait;
 
@@ -129,6 +130,20 @@ TEST(Walker, BadInputGetsClearErrors) {
   EXPECT_THROW(w.advance(std::nan("")), std::invalid_argument);
   EXPECT_THROW(w.advance(-1.0), std::invalid_argument);
   EXPECT_THROW(w.set_step_length(-0.1), std::invalid_argument);
+}
+
+TEST(Walker, AdvancingAllocatesNothing) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::Walker w = make_walker(ground);
+  w.advance(1.0);  // past the start
+  const long before = fuzzygait::testing::allocation_count();
+  for (int i = 0; i < 600; ++i) {
+    w.advance(1.0 / 60.0);
+    w.clear_events();
+    (void)w.pose();
+    (void)w.points(rig::Side::Left);
+  }
+  EXPECT_EQ(fuzzygait::testing::allocation_count(), before);
 }
 
 TEST(Walker, ControllersRunOnTheFastPath) {

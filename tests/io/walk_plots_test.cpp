@@ -253,11 +253,14 @@ TEST(WalkPlots, AnimationPlaysStridesAtRealSpeed) {
   // Two strides of 1.2 s: every animation lasts 2.4 s, looping, with the same key frames.
   EXPECT_EQ(count(text, "dur=\"2.4s\""), 6u);
   EXPECT_EQ(count(text, "repeatCount=\"indefinite\""), 6u);
-  const std::regex values("values=\"([^\"]*)\"");
+  // Found by hand: std::regex recurses once per character and overflows the stack on these
+  // long attributes.
   std::set<std::size_t> key_frames;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), values);
-       it != std::sregex_iterator(); ++it) {
-    key_frames.insert(count((*it)[1].str(), ";") + 1);
+  const std::string attribute = "values=\"";
+  for (std::size_t at = text.find(attribute); at != std::string::npos;
+       at = text.find(attribute, at + 1)) {
+    const std::size_t begin = at + attribute.size();
+    key_frames.insert(count(text.substr(begin, text.find('"', begin) - begin), ";") + 1);
   }
   EXPECT_EQ(key_frames, std::set<std::size_t>{73u});  // 30 per second, both ends
   EXPECT_EQ(text, io::plot_walk_animation(walk(), Terrain::flat()).svg());

@@ -41,7 +41,9 @@ struct Defuzzifier {
     WeightedAverage,
     WeightedSum,
   };
-  // How a weighted defuzzifier reads a term: Automatic infers it from the first activated term.
+  // How a weighted defuzzifier reads a term. Automatic reads every term as Tsukamoto does, which
+  // for Constant, Linear and Function terms is their value (fuzzylite 6 infers the type from the
+  // activated wrapper, never a Constant, so Automatic always means Tsukamoto).
   enum class WeightedType : std::uint8_t { Automatic, TakagiSugeno, Tsukamoto };
 
   // Most samples an integral defuzzifier takes: each evaluation costs resolution times the

@@ -7,8 +7,8 @@
 //   stance leg       hip and knee: their stance controllers. Ankle: the stance controller while
 //                    the heel rolls down (heel rocker) and after the heel lifts (push-off); while
 //                    the foot is flat the ground holds the foot and the ankle follows the shank,
-//                    until the controller asks to plantarflex faster than the shank allows: the
-//                    heel lifts. Toe: its controller, except after heel-off when the toes stay flat
+//                    until the controller dorsiflexes the ankle slower than the shank rolls over
+//                    the foot: the heel lifts. Toe: its controller, except after heel-off when the toes stay flat
 //                    on the ground (the MTP angle follows the foot).
 //   pelvis           carried by the leg planted first: its foot anchors the chain, so a planted
 //                    foot never slides, and the body moves on without a jerk at heel strike.
@@ -125,7 +125,7 @@ class Walker {
   void hand_over(int leg);
   void place_pelvis(int leg);
   bool close_chain(int leg);
-  void settle_foot(int leg, const rig::LegAngles& commanded, double ankle_command);
+  void settle_foot(int leg, const rig::LegAngles& commanded);
   double stance_target() const;
   double foot_depth(const rig::LegPoints& points) const;
   void clear_ground(int leg, double max_change);

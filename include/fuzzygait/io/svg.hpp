@@ -190,6 +190,10 @@ class Figure {
   std::vector<int> spans_;
 };
 
+// Several figures one above the other in a single SVG document (each keeps its own layout and
+// animations).
+std::string stack_figures(const std::vector<const Figure*>& figures);
+
 // Text made safe for XML content and attributes: & < > " ' escaped, invalid UTF-8 and control
 // characters replaced by U+FFFD.
 std::string escape_xml(std::string_view text);
