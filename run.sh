@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # fuzzygait's two entry points (see README):
-#   ./run.sh          installs what is missing, builds, and runs the main job on the default
+#   ./run.sh          installs what is missing, builds, and walks the default character (out/)
 #   ./run.sh test     installs what is missing, builds, and runs every test
 #                     (Release build, ASan+UBSan build, libFuzzer run of the FLL reader)
 set -euo pipefail
@@ -21,9 +21,9 @@ mode=${1:-main}
 case "$mode" in
   main)
     configure_and_build build -DCMAKE_BUILD_TYPE=Release
-    mkdir -p "$root/out"
-    echo "== the paper's ease-in/ease-out controller over its input range"
-    "$root/build/fuzzygait" fuzzy eval "$root/controllers/paper/ease_in_out.fll" --grid 21
+    echo "== walking the built-in default: 1.75 m tall, 0.70 m steps, 10 gait cycles"
+    "$root/build/fuzzygait" walk -o "$root/out/walk"
+    echo "== open out/walk.poses.svg in a browser to watch it, out/walk.svg for the curves"
     ;;
   test)
     echo "== Release build and tests"

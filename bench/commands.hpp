@@ -7,5 +7,7 @@ namespace fuzzygait::bench {
 
 // `fuzzygait-bench fuzzy`: fuzzygait's Evaluator against fuzzylite on fuzzylite's examples.
 void add_fuzzy_command(CLI::App& app);
+// `fuzzygait-bench gait`: character-steps per second, against fuzzylite in the walker's loop.
+void add_gait_command(CLI::App& app);
 
 }  // namespace fuzzygait::bench

@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
   CLI::App app{"fuzzygait-bench: fuzzygait's speed against reference implementations"};
   app.require_subcommand(1);
   fuzzygait::bench::add_fuzzy_command(app);
+  fuzzygait::bench::add_gait_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -2,6 +2,7 @@
 // writes the tuned set, rounded to values an animator reads.
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "fuzzygait/io/controller_files.hpp"
@@ -16,14 +17,24 @@ void add_tune_command(CLI::App& app) {
     std::string style = "default";
     std::string output;
     std::string reference = "schwartz2008_free";
+    std::string slower = "schwartz2008_slow";
+    std::string faster = "schwartz2008_fast";
     int generations = 200;
     int threads = 2;
     int digits = 3;
+    int polish = 0;
     std::uint64_t seed = 1;
     double sigma = 0.3;
     double duration = 10.0;
     bool grid = false;
     int recovery = 0;
+    std::vector<double> cycle = {1.0, 1.2};
+    std::vector<double> stance = {58.0, 64.0};
+    std::vector<double> knee_peak = {55.0, 70.0};
+    std::vector<double> pelvis_range = {0.0, 1e9};
+    double minimum_inertia = 0.02;
+    std::string name;         // of the written set; default: the starting set's
+    std::string description;  // likewise
   };
   auto o = std::make_shared<Options>();
   CLI::App* tune = app.add_subcommand(
@@ -32,45 +43,91 @@ void add_tune_command(CLI::App& app) {
   tune->add_option("--style", o->style, "Start from this built-in set (default: default)");
   tune->add_option("-o,--output", o->output, "Folder to write the tuned set to")->required();
   tune->add_option("--reference", o->reference, "Normative curves: built-in name or CSV file");
-  tune->add_option("--generations", o->generations, "CMA-ES generations")->check(CLI::PositiveNumber);
-  tune->add_option("--threads", o->threads, "Walks evaluated in parallel")->check(CLI::PositiveNumber);
+  tune->add_option("--generations", o->generations, "CMA-ES generations")
+      ->check(CLI::PositiveNumber);
+  tune->add_option("--threads", o->threads, "Walks evaluated in parallel")
+      ->check(CLI::PositiveNumber);
   tune->add_option("--digits", o->digits, "Significant digits kept in the written values")
       ->check(CLI::Range(1, 17));
+  tune->add_option("--polish", o->polish,
+                   "Generations of polishing on the rounded values (default 0)");
   tune->add_option("--seed", o->seed, "Random seed (the result is deterministic for a seed)");
   tune->add_option("--sigma", o->sigma, "Initial CMA-ES step (scaled units)");
   tune->add_option("--duration", o->duration, "Seconds walked per evaluation");
   tune->add_option("--recovery", o->recovery,
                    "Also start from this many random poses that must settle into the gait");
+  tune->add_option("--cycle", o->cycle, "Wanted gait cycle time range, s (default 1.0 1.2)")
+      ->expected(2);
+  tune->add_option("--stance", o->stance, "Wanted stance share range, % (default 58 64)")
+      ->expected(2);
+  tune->add_option("--knee-peak", o->knee_peak,
+                   "Wanted peak swing knee flexion range, deg (default 55 70)")
+      ->expected(2);
+  tune->add_option("--pelvis-range", o->pelvis_range,
+                   "Wanted vertical travel of the pelvis over a cycle, mm (default any)")
+      ->expected(2);
+  tune->add_option("--minimum-inertia", o->minimum_inertia,
+                   "Smallest inertia time constant the tuning may choose, s (default 0.02)");
+  tune->add_option("--name", o->name, "Name written into the tuned set's manifest (a style)");
+  tune->add_option("--description", o->description,
+                   "Description written into the tuned set's manifest");
+  tune->add_option("--slower", o->slower, "Reference for 0.55 m steps with --grid");
+  tune->add_option("--faster", o->faster, "Reference for 0.85 m steps with --grid");
   tune->add_flag("--grid", o->grid,
-                 "Also walk short and long steps and small and tall bodies (contact and timing)");
+                 "Also walk 0.55 and 0.85 m steps against the slower and faster references, and "
+                 "the shortest and longest steps for small and tall bodies for contact and timing");
   tune->callback([o]() {
     const gait::ControllerSet start = o->controllers.empty()
                                           ? gait::ControllerSet::builtin(o->style)
                                           : gait::ControllerSet::load(o->controllers);
     learn::TuneOptions options;
-    options.reference = io::load_normative(o->reference);
+    const gait::Normative reference = io::load_normative(o->reference);
+    // The slow and fast groups of the same study, for walks with shorter and longer steps.
+    std::optional<gait::Normative> slow;
+    std::optional<gait::Normative> fast;
+    options.conditions.push_back({1.75, 0.70, &reference, 1.0});
+    if (o->grid) {
+      slow = io::load_normative(o->slower);
+      fast = io::load_normative(o->faster);
+      options.conditions.push_back({1.75, 0.55, &*slow, 0.3});
+      options.conditions.push_back({1.75, 0.85, &*fast, 0.3});
+      options.conditions.push_back({1.75, 0.50, nullptr, 1.0});
+      // The grid's corners: the shortest and the longest steps for the leg.
+      options.conditions.push_back({2.00, 0.50, nullptr, 1.0});
+      options.conditions.push_back({1.50, 0.85, nullptr, 1.0});
+    }
     options.generations = o->generations;
     options.threads = o->threads;
     options.seed = o->seed;
     options.sigma = o->sigma;
     options.duration = o->duration;
-    if (o->grid) {
-      options.conditions.push_back({1.75, 0.50, false});
-      options.conditions.push_back({1.75, 0.85, false});
-      options.conditions.push_back({1.50, 0.60, false});
-      options.conditions.push_back({2.00, 0.80, false});
-    }
+    options.digits = o->digits;
+    options.polish_generations = o->polish;
+    options.cycle_time_min = o->cycle.at(0);
+    options.cycle_time_max = o->cycle.at(1);
+    options.minimum_inertia = o->minimum_inertia;
+    options.stance_min = o->stance.at(0);
+    options.stance_max = o->stance.at(1);
+    options.knee_peak_min = o->knee_peak.at(0);
+    options.knee_peak_max = o->knee_peak.at(1);
+    options.pelvis_range_min = o->pelvis_range.at(0);
+    options.pelvis_range_max = o->pelvis_range.at(1);
     for (int seed = 0; seed < o->recovery; ++seed) {
       options.recovery_seeds.push_back(1000 + static_cast<std::uint64_t>(seed));
     }
     options.progress = [](int generation, double cost) {
-      if (generation % 10 == 0) std::cerr << "generation " << generation << ": cost " << cost << "\n";
+      if (generation % 10 == 0)
+        std::cerr << "generation " << generation << ": cost " << cost << "\n";
     };
     std::string report;
     std::cout << "start: cost " << learn::walk_cost(start, options, &report) << "\n" << report;
     const learn::TuneResult result = learn::tune(start, options);
-    const learn::SetParameters parameters(result.set);
-    const gait::ControllerSet rounded = parameters.rounded(parameters.values(), o->digits);
+    const learn::SetParameters parameters(result.set, options.minimum_inertia);
+    gait::ControllerSet rounded = options.polish_generations > 0
+                                      ? result.set
+                                      : parameters.rounded(parameters.values(), o->digits);
+    if (!o->name.empty()) rounded.name = o->name;
+    if (!o->description.empty()) rounded.description = o->description;
     report.clear();
     const double tuned = learn::walk_cost(result.set, options);
     const double final_cost = learn::walk_cost(rounded, options, &report);

@@ -43,7 +43,9 @@ double number(const nlohmann::json& manifest, const char* key, double fallback, 
 
 }  // namespace
 
-std::string_view slot_name(int slot) { return kSlotNames.at(static_cast<std::size_t>(slot)); }
+std::string_view slot_name(int slot) {
+  return kSlotNames.at(static_cast<std::size_t>(slot));
+}
 
 std::string_view metric_name(Metric metric) {
   return kMetricNames.at(static_cast<std::size_t>(metric));
@@ -66,7 +68,8 @@ Controller::Controller(fuzzy::Engine engine, std::string source)
     const std::optional<Metric> m = metric_from_name(engine_.inputs[i].name);
     if (!m) {
       std::string known;
-      for (std::string_view n : kMetricNames) known += (known.empty() ? "" : ", ") + std::string(n);
+      for (std::string_view n : kMetricNames)
+        known += (known.empty() ? "" : ", ") + std::string(n);
       throw std::invalid_argument(source_ + ": input '" + engine_.inputs[i].name +
                                   "' is not a metric (" + known + ")");
     }
@@ -96,8 +99,8 @@ double Controller::evaluate_general(const MetricValues& metrics,
     in[i] = metrics[static_cast<std::size_t>(inputs_[i])];
   }
   double out = 0.0;
-  evaluator_->evaluate(std::span<const double>(in.data(), input_count_),
-                       std::span<double>(&out, 1), workspace);
+  evaluator_->evaluate(std::span<const double>(in.data(), input_count_), std::span<double>(&out, 1),
+                       workspace);
   return out;
 }
 
@@ -118,16 +121,18 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
   set.inertia = number(manifest, "inertia_s", 0.03, 0.001, 1.0, manifest_source);
   set.pelvis_tilt =
       rig::radians(number(manifest, "pelvis_tilt_deg", 11.0, -45.0, 45.0, manifest_source));
+  set.swing_knee_reference_sweep = rig::radians(
+      number(manifest, "swing_knee_reference_sweep_deg", 0.0, 0.0, 180.0, manifest_source));
   if (!manifest.contains("controllers") || !manifest["controllers"].is_object()) {
     throw std::invalid_argument(manifest_source + ": 'controllers' must map slots to FLL files");
   }
   const nlohmann::json& names = manifest["controllers"];
   for (auto it = names.begin(); it != names.end(); ++it) {
     bool known = false;
-    for (std::string_view s : kSlotNames) known = known || s == it.key();
+    for (std::string_view s : kSlotNames)
+      known = known || s == it.key();
     if (!known) {
-      throw std::invalid_argument(manifest_source + ": unknown controller slot '" + it.key() +
-                                  "'");
+      throw std::invalid_argument(manifest_source + ": unknown controller slot '" + it.key() + "'");
     }
   }
   for (int s = 0; s < kSlotCount; ++s) {
@@ -187,7 +192,8 @@ ControllerSet ControllerSet::builtin(std::string_view name) {
   }
   if (manifest.empty()) {
     std::string known;
-    for (const std::string& n : builtin_names()) known += (known.empty() ? "" : ", ") + n;
+    for (const std::string& n : builtin_names())
+      known += (known.empty() ? "" : ", ") + n;
     throw std::invalid_argument("no built-in controller set '" + std::string(name) +
                                 "' (built in: " + known + ")");
   }

@@ -1,6 +1,7 @@
 #include "fuzzygait/gait/walker.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -17,17 +18,26 @@ constexpr double kGravity = 9.81;
 constexpr std::size_t kEventCapacity = 64;
 // A swing foot lands once its leg's delta reaches this (the leg arrives in front of the body).
 constexpr double kLandingDelta = 0.8;
-// The clearance reflex keeps a swinging foot this far above the ground, m.
-constexpr double kSwingClearance = 0.008;
+// Mid-swing, the clearance reflex keeps a swinging foot this far above the ground (m); lifting it
+// well clear is the swing controllers' job.
+constexpr double kSwingClearance = 0.01;
 // Fastest the clearance reflex folds the knee, rad/s.
 constexpr double kReflexSpeed = 10.0;
 
-double thigh_of(double tilt, const LegAngles& a) { return a.hip - tilt; }
-double shank_of(double tilt, const LegAngles& a) { return a.hip - tilt - a.knee; }
-double foot_of(double tilt, const LegAngles& a) { return shank_of(tilt, a) + a.ankle; }
+double thigh_of(double tilt, const LegAngles& a) {
+  return a.hip - tilt;
+}
+double shank_of(double tilt, const LegAngles& a) {
+  return a.hip - tilt - a.knee;
+}
+double foot_of(double tilt, const LegAngles& a) {
+  return shank_of(tilt, a) + a.ankle;
+}
 
 // Inclination of the line from `from` to `to`, from the downward vertical, forward positive.
-double inclination(Point from, Point to) { return std::atan2(to.x - from.x, from.y - to.y); }
+double inclination(Point from, Point to) {
+  return std::atan2(to.x - from.x, from.y - to.y);
+}
 
 // The paper's delta: -1 at the start angle, 0 when the thigh is vertical, +1 at the end angle
 // (linear between start and end when both lie on the same side of the vertical).
@@ -43,7 +53,9 @@ double progress(double theta, double start, double end) {
 
 // d(theta)/d(delta) averaged over the sweep: hip controllers command a share of the sweep per
 // second, so the thigh's velocity stays smooth where the mapping bends at the vertical.
-double sweep_scale(double start, double end) { return 0.5 * (end - start); }
+double sweep_scale(double start, double end) {
+  return 0.5 * (end - start);
+}
 
 Point contact_point(const LegPoints& p, Phase phase) {
   return phase == Phase::Ball ? p.ball : p.heel;
@@ -81,7 +93,9 @@ const char* name(Event event) {
   return "?";
 }
 
-double Walker::max_step_length(const rig::Segments& s) { return 1.2 * s.leg_length(); }
+double Walker::max_step_length(const rig::Segments& s) {
+  return 1.2 * s.leg_length();
+}
 
 Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
                const terrain::Terrain& terrain)
@@ -90,7 +104,8 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
       segments_(options.segments),
       limits_(options.limits),
       step_length_(options.step_length),
-      time_step_(options.time_step) {
+      time_step_(options.time_step),
+      controller_backend_(options.controller_backend) {
   rig::validate(segments_);
   if (controllers.controllers.size() != static_cast<std::size_t>(kSlotCount)) {
     throw std::invalid_argument("the controller set is incomplete");
@@ -113,10 +128,9 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
 void Walker::set_step_length(double metres) {
   const double longest = max_step_length(segments_);
   if (!std::isfinite(metres) || metres < 0.05 || metres > longest) {
-    throw std::invalid_argument("step length must be between 0.05 m and " +
-                                std::to_string(longest) +
-                                " m (1.2 leg lengths, the reach of these legs), got " +
-                                std::to_string(metres));
+    throw std::invalid_argument(
+        "step length must be between 0.05 m and " + std::to_string(longest) +
+        " m (1.2 leg lengths, the reach of these legs), got " + std::to_string(metres));
   }
   step_length_ = metres;
 }
@@ -132,6 +146,38 @@ rig::Pose Walker::pose() const {
 LegPoints Walker::points(rig::Side side) const {
   return rig::forward_kinematics(segments_, state_.pelvis, state_.pelvis_tilt,
                                  state_.legs[rig::index(side)].angles);
+}
+
+namespace {
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+}  // namespace
+
+// rig::forward_kinematics with the walker's tilt: the same points, with each segment's sine and
+// cosine computed only when its orientation changed (bit for bit) since the leg was last placed.
+// Inline, so that a caller computes only the points it reads.
+inline LegPoints Walker::leg_points(int leg, Point hip, const LegAngles& angles) {
+  const rig::LegOrientation o = rig::orientation(state_.pelvis_tilt, angles);
+  LegTrig& t = trig_[static_cast<std::size_t>(leg)];
+  if (!same_bits(o.thigh, t.orientation.thigh) || !same_bits(o.shank, t.orientation.shank) ||
+      !same_bits(o.foot, t.orientation.foot) || !same_bits(o.toes, t.orientation.toes)) {
+    t.update(o);
+  }
+  return rig::forward_kinematics(segments_, hip, t.trig);
+}
+
+void Walker::LegTrig::update(const rig::LegOrientation& o) {
+  auto segment = [](double angle, double& known, double& sin, double& cos) {
+    if (same_bits(angle, known)) return;
+    known = angle;
+    sin = std::sin(angle);
+    cos = std::cos(angle);
+  };
+  segment(o.thigh, orientation.thigh, trig.thigh_sin, trig.thigh_cos);
+  segment(o.shank, orientation.shank, trig.shank_sin, trig.shank_cos);
+  segment(o.foot, orientation.foot, trig.foot_sin, trig.foot_cos);
+  segment(o.toes, orientation.toes, trig.toes_sin, trig.toes_cos);
 }
 
 void Walker::record(rig::Side side, Event event, Point where) {
@@ -150,6 +196,10 @@ void Walker::start(const StartPose& start_pose) {
   const double tilt = state_.pelvis_tilt;
   LegState& left = state_.legs[0];
   LegState& right = state_.legs[1];
+  // The default start's thigh angles and speeds are those of a 0.70 m step of a 1.75 m adult,
+  // scaled to this step for this leg (a short step of a long leg sweeps a small angle).
+  const double reference = 0.70 / rig::segments_from_stature(1.75).leg_length();
+  const double scale = std::clamp(step_length_ / segments_.leg_length() / reference, 0.5, 1.5);
   if (start_pose.random) {
     // Seeds hashed apart first, so nearby seeds do not walk the same sequence.
     std::uint64_t x = (start_pose.seed ^ 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull;
@@ -178,9 +228,13 @@ void Walker::start(const StartPose& start_pose) {
       if (feet_lowest) break;
     }
   } else {
-    // Mid stance on the right foot, the left leg swinging past it.
-    right.angles = {rig::radians(2.0) + tilt, rig::radians(8.0), rig::radians(6.0), 0.0};
-    left.angles = {rig::radians(0.0) + tilt, rig::radians(55.0), rig::radians(-5.0), 0.0};
+    // Mid stride: the right foot flat under the body, the left leg just off the ground behind
+    // it and already swinging forward (the velocities of a walk at this moment).
+    right.angles = {rig::radians(8.0 * scale) + tilt, rig::radians(12.0), 0.0, 0.0};
+    left.angles = {rig::radians(-14.0 * scale) + tilt, rig::radians(45.0), rig::radians(-12.0),
+                   rig::radians(25.0)};
+    left.velocity = {rig::radians(150.0 * scale), rig::radians(300.0), rig::radians(60.0), 0.0};
+    right.velocity = {rig::radians(-80.0 * scale), 0.0, 0.0, 0.0};
   }
   // Put the lower foot on the ground with the pelvis above x = 0.
   state_.pelvis = {0.0, 0.0};
@@ -202,8 +256,8 @@ void Walker::start(const StartPose& start_pose) {
     planted.angles.toe = terrain_->slope(p.ball.x) - foot_of(tilt, planted.angles);
     state_.pelvis.y = 0.0;
     p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
-    state_.pelvis.y = -std::min(p.heel.y - terrain_->height(p.heel.x),
-                                p.ball.y - terrain_->height(p.ball.x));
+    state_.pelvis.y =
+        -std::min(p.heel.y - terrain_->height(p.heel.x), p.ball.y - terrain_->height(p.ball.x));
     p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
   }
   const double heel_gap = p.heel.y - terrain_->height(p.heel.x);
@@ -221,16 +275,39 @@ void Walker::start(const StartPose& start_pose) {
     p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
   }
   state_.lead = -1;
-  strike(down, phase, phase == Phase::Ball ? Point{p.ball.x, terrain_->height(p.ball.x)}
-                                           : Point{p.heel.x, terrain_->height(p.heel.x)});
+  strike(down, phase,
+         phase == Phase::Ball ? Point{p.ball.x, terrain_->height(p.ball.x)}
+                              : Point{p.heel.x, terrain_->height(p.heel.x)});
   if (!start_pose.random) {
     // As if the right heel had struck a step ago and the left toes had just left the ground.
-    planted.sweep_start = rig::radians(24.0);
+    planted.sweep_start = rig::radians(24.0 * scale);
     planted.strike_x = p.heel.x;
   }
   const int up = 1 - down;
   lift_off(up);
-  if (!start_pose.random) state_.legs[static_cast<std::size_t>(up)].sweep_start = rig::radians(-12.0);
+  if (!start_pose.random) {
+    LegState& swinging = state_.legs[static_cast<std::size_t>(up)];
+    swinging.sweep_start = thigh_of(tilt, swinging.angles) + rig::radians(2.0 * scale);
+  }
+  if (!start_pose.random && start_pose.warm_up > 0.0) {
+    // Walk a while on level ground at the start's height, then bring that walk back to x = 0:
+    // the character starts in its own steady gait rather than from a pose it never takes.
+    const terrain::Terrain* ground = terrain_;
+    const terrain::Terrain level =
+        terrain::Terrain::polyline({{-1e6, ground->height(0.0)}, {1e6, ground->height(0.0)}});
+    terrain_ = &level;
+    for (double t = 0.0; t < start_pose.warm_up; t += time_step_)
+      step(time_step_);
+    terrain_ = ground;
+    const double shift = state_.pelvis.x;
+    state_.pelvis.x = 0.0;
+    for (LegState& l : state_.legs) {
+      l.anchor.x -= shift;
+      l.target_x -= shift;
+      l.strike_x -= shift;
+    }
+    state_.time = 0.0;
+  }
   events_.clear();
   state_.heel_strikes = 0;
 }
@@ -244,8 +321,8 @@ void Walker::strike(int leg, Phase phase, Point contact) {
   l.sweep_start = thigh_of(tilt, l.angles);
   l.sweep_end = stance_target();
   ++state_.heel_strikes;
-  record(static_cast<rig::Side>(leg), phase == Phase::Ball ? Event::ForefootStrike : Event::HeelStrike,
-         contact);
+  record(static_cast<rig::Side>(leg),
+         phase == Phase::Ball ? Event::ForefootStrike : Event::HeelStrike, contact);
   if (state_.lead < 0) {
     state_.lead = leg;
     state_.fall_velocity = 0.0;
@@ -264,19 +341,19 @@ void Walker::hand_over(int leg) {
 
 void Walker::lift_off(int leg) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-  const LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, state_.pelvis_tilt, l.angles);
+  const LegPoints p = leg_points(leg, state_.pelvis, l.angles);
   if (l.phase != Phase::Swing) record(static_cast<rig::Side>(leg), Event::ToeOff, p.tip);
   l.phase = Phase::Swing;
   l.sweep_start = thigh_of(state_.pelvis_tilt, l.angles);
   const int lead = state_.lead;
-  const double from = (lead >= 0 && lead != leg) ? state_.legs[static_cast<std::size_t>(lead)].strike_x
-                                                 : p.heel.x;
+  const double from =
+      (lead >= 0 && lead != leg) ? state_.legs[static_cast<std::size_t>(lead)].strike_x : p.heel.x;
   l.target_x = from + step_length_;
 }
 
 void Walker::place_pelvis(int leg) {
   const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-  const LegPoints p = rig::forward_kinematics(segments_, {0.0, 0.0}, state_.pelvis_tilt, l.angles);
+  const LegPoints p = leg_points(leg, {0.0, 0.0}, l.angles);
   const Point c = contact_point(p, l.phase);
   state_.pelvis = {l.anchor.x - c.x, l.anchor.y - c.y};
 }
@@ -310,14 +387,15 @@ bool Walker::close_chain(int leg) {
   const double distance = std::hypot(dx, dy);
   if (distance > s.thigh + lower - 1e-9) return false;
   const double d = std::max(distance, std::abs(s.thigh - lower) + 1e-9);
-  const double cos_hip = std::clamp(
-      (s.thigh * s.thigh + d * d - lower * lower) / (2.0 * s.thigh * d), -1.0, 1.0);
+  const double cos_hip =
+      std::clamp((s.thigh * s.thigh + d * d - lower * lower) / (2.0 * s.thigh * d), -1.0, 1.0);
   const double thigh = inclination(hip, target) + std::acos(cos_hip);
   const Point knee{hip.x + s.thigh * std::sin(thigh), hip.y - s.thigh * std::cos(thigh)};
   // The knee-to-contact vector is (we, wn) in the shank's frame, rotated by the shank's
   // inclination.
-  const double shank_inclination = std::remainder(
-      std::atan2(target.y - knee.y, target.x - knee.x) - std::atan2(wn, we), 2.0 * std::numbers::pi);
+  const double shank_inclination =
+      std::remainder(std::atan2(target.y - knee.y, target.x - knee.x) - std::atan2(wn, we),
+                     2.0 * std::numbers::pi);
   // The knee cannot bend backwards: a chain that needs it is out of reach.
   if (thigh - shank_inclination < -1e-9) return false;
   l.angles.hip = thigh + tilt;
@@ -382,7 +460,7 @@ double Walker::foot_depth(const LegPoints& p) const {
                    terrain_->height(p.tip.x) - p.tip.y});
 }
 
-void Walker::clear_ground(int leg, double max_change) {
+void Walker::clear_ground(int leg, double max_change, double margin) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
   const double tilt = state_.pelvis_tilt;
   // A knee that would touch the ground (a deep crouch after an awkward start) swings the thigh
@@ -390,7 +468,7 @@ void Walker::clear_ground(int leg, double max_change) {
   auto knee_depth = [&](double hip) {
     rig::LegAngles a = l.angles;
     a.hip = hip;
-    const LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt, a);
+    const LegPoints p = leg_points(leg, state_.pelvis, a);
     return terrain_->height(p.knee.x) - p.knee.y + kSwingClearance;
   };
   if (knee_depth(l.angles.hip) > 0.0) {
@@ -409,7 +487,7 @@ void Walker::clear_ground(int leg, double max_change) {
   auto depth = [&](double knee) {
     rig::LegAngles a = l.angles;
     a.knee = knee;
-    return foot_depth(rig::forward_kinematics(segments_, state_.pelvis, tilt, a)) + kSwingClearance;
+    return foot_depth(leg_points(leg, state_.pelvis, a)) + margin;
   };
   if (depth(high) > 0.0) {  // cannot clear in one step: fold as far as allowed
     l.angles.knee = high;
@@ -448,7 +526,8 @@ void Walker::advance(double dt) {
   const double steps = std::ceil(dt / time_step_ - 1e-9);
   const int n = std::max(1, static_cast<int>(steps));
   const double h = dt / n;
-  for (int i = 0; i < n && h > 0.0; ++i) step(h);
+  for (int i = 0; i < n && h > 0.0; ++i)
+    step(h);
 }
 
 void Walker::step(double h) {
@@ -456,16 +535,22 @@ void Walker::step(double h) {
   std::array<LegPoints, 2> points;
   std::array<MetricValues, 2> metrics{};
   for (int leg = 0; leg < 2; ++leg) {
-    points[static_cast<std::size_t>(leg)] = rig::forward_kinematics(
-        segments_, state_.pelvis, tilt, state_.legs[static_cast<std::size_t>(leg)].angles);
-    update_metrics(leg, points[static_cast<std::size_t>(leg)], metrics[static_cast<std::size_t>(leg)]);
+    points[static_cast<std::size_t>(leg)] =
+        leg_points(leg, state_.pelvis, state_.legs[static_cast<std::size_t>(leg)].angles);
+    update_metrics(leg, points[static_cast<std::size_t>(leg)],
+                   metrics[static_cast<std::size_t>(leg)]);
   }
   const auto other_delta = static_cast<std::size_t>(Metric::OtherDelta);
   const auto delta = static_cast<std::size_t>(Metric::Delta);
   metrics[0][other_delta] = metrics[1][delta];
   metrics[1][other_delta] = metrics[0][delta];
 
-  const double follow = 1.0 - std::exp(-h / controllers_->inertia);
+  // The same h every step but the last of an uneven frame: exp() once per distinct h.
+  if (!(h == follow_step_)) {
+    follow_step_ = h;
+    follow_ = 1.0 - std::exp(-h / controllers_->inertia);
+  }
+  const double follow = follow_;
   std::array<LegAngles, 2> previous;
   std::array<LegAngles, 2> commanded;
   for (int leg = 0; leg < 2; ++leg) {
@@ -475,14 +560,20 @@ void Walker::step(double h) {
     const MetricValues& m = metrics[static_cast<std::size_t>(leg)];
     auto command = [&](Joint joint) {
       const int s = slot(phase, joint);
+      if (controller_backend_) return controller_backend_(s, m);
       return controllers_->controllers[static_cast<std::size_t>(s)].evaluate(
           m, workspaces_[static_cast<std::size_t>(s)]);
     };
     const double hip_rate = command(Joint::Hip);
-    const double target_velocity[4] = {
-        hip_rate * sweep_scale(l.sweep_start, l.sweep_end),
-        rig::radians(command(Joint::Knee)), rig::radians(command(Joint::Ankle)),
-        rig::radians(command(Joint::Toe))};
+    // A longer swing of the thigh swings the shank faster in proportion (see ControllerSet).
+    const double reference = controllers_->swing_knee_reference_sweep;
+    const double knee_scale = phase == LegPhase::Swing && reference > 0.0
+                                  ? std::abs(l.sweep_end - l.sweep_start) / reference
+                                  : 1.0;
+    const double target_velocity[4] = {hip_rate * sweep_scale(l.sweep_start, l.sweep_end),
+                                       knee_scale * rig::radians(command(Joint::Knee)),
+                                       rig::radians(command(Joint::Ankle)),
+                                       rig::radians(command(Joint::Toe))};
     double* velocity[4] = {&l.velocity.hip, &l.velocity.knee, &l.velocity.ankle, &l.velocity.toe};
     double* angle[4] = {&l.angles.hip, &l.angles.knee, &l.angles.ankle, &l.angles.toe};
     for (int j = 0; j < 4; ++j) {
@@ -511,12 +602,16 @@ void Walker::step(double h) {
       // Swing foot: it lands once the leg arrives in front of the body; before that the knee
       // folds just enough to keep the foot off the ground (a clearance reflex), and only a foot
       // the reflex cannot lift touches down early.
-      LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles);
+      LegPoints p = leg_points(leg, state_.pelvis, l.angles);
       const bool arriving = l.delta >= kLandingDelta || state_.lead < 0;
       const double knee_gap = p.knee.y - terrain_->height(p.knee.x);
-      if ((!arriving && foot_depth(p) > -kSwingClearance) || knee_gap < kSwingClearance) {
-        clear_ground(leg, kReflexSpeed * h);
-        p = rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles);
+      // The clearance wanted grows from nothing at toe off and fades again before landing, so
+      // the reflex never jerks the knee when the foot leaves or reaches the ground.
+      const double margin = kSwingClearance * std::clamp((l.delta + 1.0) / 0.5, 0.0, 1.0) *
+                            std::clamp((kLandingDelta - l.delta) / 0.3, 0.0, 1.0);
+      if ((!arriving && foot_depth(p) > -margin) || knee_gap < kSwingClearance) {
+        clear_ground(leg, kReflexSpeed * h, margin);
+        p = leg_points(leg, state_.pelvis, l.angles);
       }
       const double heel_depth = terrain_->height(p.heel.x) - p.heel.y;
       const double ball_depth = terrain_->height(p.ball.x) - p.ball.y;
@@ -540,7 +635,8 @@ void Walker::step(double h) {
     }
     settle_foot(leg, commanded[static_cast<std::size_t>(leg)]);
     bool reached = close_chain(leg);
-    if (reached && l.phase == Phase::Ball && foot_of(tilt, l.angles) >= terrain_->slope(l.anchor.x)) {
+    if (reached && l.phase == Phase::Ball &&
+        foot_of(tilt, l.angles) >= terrain_->slope(l.anchor.x)) {
       // The chain closed with the heel back on the ground.
       settle_foot(leg, l.angles);
       reached = close_chain(leg);
@@ -553,14 +649,14 @@ void Walker::step(double h) {
   for (int leg = 0; leg < 2; ++leg) {
     const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
     if (l.phase == Phase::Swing && state_.lead >= 0 &&
-        foot_depth(rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles)) > 0.0) {
-      clear_ground(leg, limits_.maximum.knee);
+        foot_depth(leg_points(leg, state_.pelvis, l.angles)) > 0.0) {
+      clear_ground(leg, limits_.maximum.knee, 0.0);
     }
   }
   // Toes never dip below the ground: they bend up where the ground holds them.
   for (int leg = 0; leg < 2; ++leg) {
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-    const LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt, l.angles);
+    const LegPoints p = leg_points(leg, state_.pelvis, l.angles);
     const double ground = terrain_->height(p.tip.x);
     if (p.tip.y < ground) {
       const double rise = std::clamp((ground - p.ball.y) / segments_.toe, -1.0, 1.0);

@@ -17,6 +17,10 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
   manifest["description"] = set.description;
   manifest["inertia_s"] = set.inertia;
   manifest["pelvis_tilt_deg"] = std::round(rig::degrees(set.pelvis_tilt) * 1e6) / 1e6;
+  if (set.swing_knee_reference_sweep > 0.0) {
+    manifest["swing_knee_reference_sweep_deg"] =
+        std::round(rig::degrees(set.swing_knee_reference_sweep) * 1e6) / 1e6;
+  }
   nlohmann::ordered_json files;
   for (int s = 0; s < gait::kSlotCount; ++s) {
     const std::string name = std::string(gait::slot_name(s)) + ".fll";

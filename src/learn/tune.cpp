@@ -10,20 +10,20 @@
 namespace fuzzygait::learn {
 namespace {
 
-constexpr double kMinimumInertia = 0.02;  // s: below this, joint velocities would jump
-
 double round_significant(double v, int digits) {
   if (v == 0.0 || !std::isfinite(v)) return v;
-  const double magnitude = std::pow(10.0, digits - 1 - static_cast<int>(std::floor(std::log10(std::abs(v)))));
+  const double magnitude =
+      std::pow(10.0, digits - 1 - static_cast<int>(std::floor(std::log10(std::abs(v)))));
   return std::round(v * magnitude) / magnitude;
 }
 
-gait::ControllerSet rebuild(const gait::ControllerSet& base, const std::vector<fuzzy::Engine>& engines,
-                            double inertia) {
+gait::ControllerSet rebuild(const gait::ControllerSet& base,
+                            const std::vector<fuzzy::Engine>& engines, double inertia) {
   gait::ControllerSet set;
   set.name = base.name;
   set.description = base.description;
   set.pelvis_tilt = base.pelvis_tilt;
+  set.swing_knee_reference_sweep = base.swing_knee_reference_sweep;
   set.inertia = inertia;
   for (std::size_t s = 0; s < engines.size(); ++s) {
     set.controllers.emplace_back(engines[s], base.controllers[s].source());
@@ -33,11 +33,13 @@ gait::ControllerSet rebuild(const gait::ControllerSet& base, const std::vector<f
 
 }  // namespace
 
-SetParameters::SetParameters(const gait::ControllerSet& base) : base_(base) {
+SetParameters::SetParameters(const gait::ControllerSet& base, double minimum_inertia)
+    : base_(base), minimum_inertia_(minimum_inertia) {
   for (std::size_t s = 0; s < base.controllers.size(); ++s) {
     const fuzzy::Engine& e = base.controllers[s].engine();
-    const bool hip = s == static_cast<std::size_t>(gait::slot(gait::LegPhase::Swing, gait::Joint::Hip)) ||
-                     s == static_cast<std::size_t>(gait::slot(gait::LegPhase::Stance, gait::Joint::Hip));
+    const bool hip =
+        s == static_cast<std::size_t>(gait::slot(gait::LegPhase::Swing, gait::Joint::Hip)) ||
+        s == static_cast<std::size_t>(gait::slot(gait::LegPhase::Stance, gait::Joint::Hip));
     for (const fuzzy::Term& t : e.outputs.at(0).terms) {
       if (t.kind != fuzzy::TermKind::Constant) continue;
       scales_.push_back(hip ? 2.0 : 200.0);
@@ -45,7 +47,7 @@ SetParameters::SetParameters(const gait::ControllerSet& base) : base_(base) {
     }
   }
   scales_.push_back(0.02);
-  start_.push_back(std::max(base.inertia, kMinimumInertia));
+  start_.push_back(std::max(base.inertia, minimum_inertia_));
   // Interior knots of the inputs of partition controllers: when along its progress a joint
   // changes its mind.
   for (std::size_t s = 0; s < base.controllers.size(); ++s) {
@@ -66,13 +68,15 @@ SetParameters::SetParameters(const gait::ControllerSet& base) : base_(base) {
 
 std::vector<double> SetParameters::values() const {
   std::vector<double> v(start_.size());
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = start_[i] / scales_[i];
+  for (std::size_t i = 0; i < v.size(); ++i)
+    v[i] = start_[i] / scales_[i];
   return v;
 }
 
 gait::ControllerSet SetParameters::apply(const std::vector<double>& scaled) const {
   std::vector<double> values(scaled.size());
-  for (std::size_t i = 0; i < values.size(); ++i) values[i] = scaled[i] * scales_[i];
+  for (std::size_t i = 0; i < values.size(); ++i)
+    values[i] = scaled[i] * scales_[i];
   return with_values(values);
 }
 
@@ -86,7 +90,7 @@ gait::ControllerSet SetParameters::with_values(const std::vector<double>& values
     }
     engines.push_back(std::move(e));
   }
-  const double inertia = std::clamp(std::abs(values[k++]), kMinimumInertia, 0.2);
+  const double inertia = std::clamp(std::abs(values[k++]), minimum_inertia_, 0.2);
   for (const Knot& knot : knots_) {
     fuzzy::InputVariable& v = engines[knot.slot].inputs[knot.input];
     const double gap = 0.02 * (v.maximum - v.minimum);
@@ -101,7 +105,8 @@ gait::ControllerSet SetParameters::with_values(const std::vector<double>& values
   return rebuild(base_, engines, inertia);
 }
 
-gait::ControllerSet SetParameters::rounded(const std::vector<double>& scaled, int significant) const {
+gait::ControllerSet SetParameters::rounded(const std::vector<double>& scaled,
+                                           int significant) const {
   std::vector<double> values(scaled.size());
   for (std::size_t i = 0; i < values.size(); ++i) {
     values[i] = round_significant(scaled[i] * scales_[i], significant);
@@ -131,8 +136,8 @@ double word_penalty(const gait::ControllerSet& set) {
       if (w == "stay" || w == "hold") penalty += std::max(0.0, std::abs(v) - scale) / scale;
       const bool positive = has("flex") || has("up") || has("roll") || has("settle") ||
                             (w == "slow" || w == "fast" || w == "steady" || w == "late");
-      const bool negative = has("extend") || has("down") || has("push") || has("lower") ||
-                            w == "back";
+      const bool negative =
+          has("extend") || has("down") || has("push") || has("lower") || w == "back";
       if (positive) penalty += std::max(0.0, -v) / scale;
       if (negative) penalty += std::max(0.0, v) / scale;
       const std::size_t fast = w.find("_fast");
@@ -147,7 +152,14 @@ double word_penalty(const gait::ControllerSet& set) {
     }
     double slow = 0.0;
     double fast = 0.0;
+    double steady = 0.0;
+    double late = 0.0;
     if (value("slow", slow) && value("fast", fast)) penalty += std::max(0.0, slow - fast) / scale;
+    // The body's steady progress is faster than its slow start and its late finish.
+    if (value("steady", steady)) {
+      if (value("slow", slow)) penalty += std::max(0.0, slow - steady) / scale;
+      if (value("late", late)) penalty += std::max(0.0, late - steady) / scale;
+    }
   }
   return penalty;
 }
@@ -185,7 +197,8 @@ double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::st
   // Steps after the third must be within 5 % of the command; each missing or wrong one costs.
   int wrong = 0;
   for (std::size_t k = 4; k < 10; ++k) {
-    if (k >= strikes.size() || std::abs(strikes[k] - strikes[k - 1] - wo.step_length) > 0.05 * wo.step_length) {
+    if (k >= strikes.size() ||
+        std::abs(strikes[k] - strikes[k - 1] - wo.step_length) > 0.05 * wo.step_length) {
       ++wrong;
     }
   }
@@ -198,8 +211,13 @@ double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::st
 
 double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std::string* report) {
   const terrain::Terrain ground = terrain::Terrain::flat();
-  double total = 10.0 * word_penalty(set);
-  for (std::uint64_t seed : options.recovery_seeds) total += recovery_cost(set, seed, report);
+  const double words = word_penalty(set);
+  double total = 10.0 * words;
+  if (report && words > 0.0) {
+    *report += "words against their meaning: cost " + std::to_string(10.0 * words) + "\n";
+  }
+  for (std::uint64_t seed : options.recovery_seeds)
+    total += recovery_cost(set, seed, report);
   for (const WalkCondition& c : options.conditions) {
     double cost = 0.0;
     try {
@@ -208,42 +226,54 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
       wo.step_length = c.step_length;
       gait::Walker walker(set, wo, ground);
       const gait::Motion motion = gait::record(walker, options.duration, options.fps);
-      const gait::GaitReport r =
-          gait::evaluate(motion, ground, c.realism ? &options.reference : nullptr, c.step_length);
+      const gait::GaitReport r = gait::evaluate(motion, ground, c.reference, c.step_length);
       auto over = [](double value, double low, double high) {
         return std::max(0.0, low - value) + std::max(0.0, value - high);
       };
       cost += 2.0 * r.step_error_percent;
       cost += 200.0 * std::max(0.0, 0.012 - r.min_toe_clearance) / 0.012;
       cost += 100.0 * r.cycle_time_sd + 100.0 * r.step_length_sd / c.step_length;
-      cost += 2.0 * over(r.stance_percent, 58.0, 64.0);
-      // Adults walk about 100-120 steps a minute at these steps (cycles of 1.0-1.2 s).
-      cost += 50.0 * over(r.cycle_time, 1.0, 1.2);
+      cost += 2.0 * over(r.stance_percent, options.stance_min, options.stance_max);
+      cost += 0.5 * over(1000.0 * r.pelvis_vertical_range, options.pelvis_range_min,
+                         options.pelvis_range_max);
+      cost += 50.0 * over(r.cycle_time, options.cycle_time_min, options.cycle_time_max);
       // Velocities must not jump where a phase hands a joint to another controller.
-      cost += 5.0 * std::max(0.0, r.max_velocity_jump / std::max(r.typical_velocity_change, 1.0) - 1.5);
-      cost += 100.0 * std::max(0.0, r.max_slip - 0.0005) + 100.0 * r.max_penetration;
-      if (c.realism) {
-        cost += r.thigh_score->rmse + r.knee_score->rmse + 3.0 * r.ankle_score->rmse;
-        cost += 10.0 * (2.0 - r.thigh_score->pearson - r.knee_score->pearson) +
-                20.0 * (1.0 - r.ankle_score->pearson);
-        cost += over(r.knee_peak, 56.0, 68.0) + over(r.knee_peak_percent, 69.0, 77.0);
+      cost += 10.0 *
+              std::max(0.0, r.max_velocity_jump / std::max(r.typical_velocity_change, 1.0) - 1.2);
+      // A foot point near the ground that moves along it is a slip (the walk checker's rule).
+      cost += 2000.0 * std::max(0.0, r.max_slip - 0.0005) + 1000.0 * r.max_penetration;
+      if (c.reference) {
+        double realism = 2.0 * (r.thigh_score->rmse + r.knee_score->rmse + r.ankle_score->rmse);
+        realism += 10.0 * (2.0 - r.thigh_score->pearson - r.knee_score->pearson) +
+                   20.0 * (1.0 - r.ankle_score->pearson);
+        if (c.realism_weight >= 1.0) {
+          realism += 10.0 * (std::max(0.0, r.thigh_score->rmse - options.thigh_rmse_max) +
+                             std::max(0.0, r.knee_score->rmse - options.knee_rmse_max) +
+                             std::max(0.0, r.ankle_score->rmse - options.ankle_rmse_max));
+        }
+        realism += over(r.knee_peak, options.knee_peak_min, options.knee_peak_max) +
+                   over(r.knee_peak_percent, 69.0, 77.0);
         // The toes rest near neutral while the foot is flat and again before landing.
         double toe = 0.0;
-        for (int k = 5; k <= 15; ++k) toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
-        for (int k = 43; k <= 50; ++k) toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
-        cost += 0.1 * toe;
+        for (int k = 5; k <= 15; ++k)
+          toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
+        for (int k = 43; k <= 50; ++k)
+          toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
+        realism += 0.1 * toe;
+        cost += c.realism_weight * realism;
       }
       if (report) {
         char line[400];
-        std::snprintf(line, sizeof line,
-                      "stature %.2f step %.2f: cost %.2f | step %.3f (%.1f%%) stance %.1f cycle %.3f "
-                      "clear %.1f mm knee %.0f@%.0f%%",
-                      c.stature, c.step_length, cost, r.step_length, r.step_error_percent,
-                      r.stance_percent, r.cycle_time, 1000.0 * r.min_toe_clearance, r.knee_peak,
-                      r.knee_peak_percent);
+        std::snprintf(
+            line, sizeof line,
+            "stature %.2f step %.2f: cost %.2f | step %.3f (%.1f%%) stance %.1f cycle %.3f "
+            "clear %.1f mm knee %.0f@%.0f%%",
+            c.stature, c.step_length, cost, r.step_length, r.step_error_percent, r.stance_percent,
+            r.cycle_time, 1000.0 * r.min_toe_clearance, r.knee_peak, r.knee_peak_percent);
         *report += line;
-        if (c.realism) {
-          std::snprintf(line, sizeof line, " | rmse thigh %.1f knee %.1f ankle %.1f, r %.2f %.2f %.2f",
+        if (c.reference) {
+          std::snprintf(line, sizeof line,
+                        " | rmse thigh %.1f knee %.1f ankle %.1f, r %.2f %.2f %.2f",
                         r.thigh_score->rmse, r.knee_score->rmse, r.ankle_score->rmse,
                         r.thigh_score->pearson, r.knee_score->pearson, r.ankle_score->pearson);
           *report += line;
@@ -252,8 +282,9 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
       }
     } catch (const std::exception& e) {
       cost = 1000.0;
-      if (report) *report += "stature/step " + std::to_string(c.stature) + "/" +
-                             std::to_string(c.step_length) + ": failed: " + e.what() + "\n";
+      if (report)
+        *report += "stature/step " + std::to_string(c.stature) + "/" +
+                   std::to_string(c.step_length) + ": failed: " + e.what() + "\n";
     }
     total += std::isfinite(cost) ? cost : 1000.0;
   }
@@ -261,7 +292,7 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
 }
 
 TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
-  const SetParameters parameters(start);
+  const SetParameters parameters(start, options.minimum_inertia);
   CmaesOptions cma;
   cma.sigma = options.sigma;
   cma.max_generations = options.generations;
@@ -270,11 +301,27 @@ TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
   cma.progress = [&options](int generation, double best, const std::vector<double>&) {
     if (options.progress) options.progress(generation, best);
   };
-  auto cost = [&](const std::vector<double>& x) {
-    return walk_cost(parameters.apply(x), options);
-  };
+  auto cost = [&](const std::vector<double>& x) { return walk_cost(parameters.apply(x), options); };
   const CmaesResult r = minimize(cost, parameters.values(), cma);
   TuneResult out{parameters.apply(r.best), r.best_cost, cost(parameters.values()), r.evaluations};
+  if (options.polish_generations > 0) {
+    // The written values are rounded for the artist: polish the result where the cost sees
+    // exactly those rounded values.
+    auto rounded_cost = [&](const std::vector<double>& x) {
+      return walk_cost(parameters.rounded(x, options.digits), options);
+    };
+    CmaesOptions polish = cma;
+    polish.sigma = 0.25 * options.sigma;
+    polish.max_generations = options.polish_generations;
+    polish.seed = options.seed + 1;
+    polish.progress = [&options](int generation, double best, const std::vector<double>&) {
+      if (options.progress) options.progress(options.generations + generation, best);
+    };
+    const CmaesResult p = minimize(rounded_cost, r.best, polish);
+    out.set = parameters.rounded(p.best, options.digits);
+    out.cost = p.best_cost;
+    out.evaluations += p.evaluations;
+  }
   return out;
 }
 

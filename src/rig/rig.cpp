@@ -7,9 +7,6 @@
 
 namespace fuzzygait::rig {
 
-double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
-double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
-
 Segments segments_from_stature(double stature) {
   if (!std::isfinite(stature) || stature < 0.5 || stature > 3.0) {
     throw std::invalid_argument("stature must be between 0.5 and 3.0 m, got " +
@@ -42,31 +39,22 @@ void validate(const Segments& s) {
   check("toe", s.toe, 0.0, 0.3);
 }
 
-LegOrientation orientation(double pelvis_tilt, const LegAngles& a) {
-  LegOrientation o;
-  o.thigh = a.hip - pelvis_tilt;
-  o.shank = o.thigh - a.knee;
-  o.foot = o.shank + a.ankle;
-  o.toes = o.foot + a.toe;
-  return o;
+LegTrig trig(const LegOrientation& o) {
+  LegTrig t;
+  t.thigh_sin = std::sin(o.thigh);
+  t.thigh_cos = std::cos(o.thigh);
+  t.shank_sin = std::sin(o.shank);
+  t.shank_cos = std::cos(o.shank);
+  t.foot_sin = std::sin(o.foot);
+  t.foot_cos = std::cos(o.foot);
+  t.toes_sin = std::sin(o.toes);
+  t.toes_cos = std::cos(o.toes);
+  return t;
 }
 
 LegPoints forward_kinematics(const Segments& s, Point hip, double pelvis_tilt,
                              const LegAngles& angles) {
-  const LegOrientation o = orientation(pelvis_tilt, angles);
-  LegPoints p;
-  p.hip = hip;
-  p.knee = {hip.x + s.thigh * std::sin(o.thigh), hip.y - s.thigh * std::cos(o.thigh)};
-  p.ankle = {p.knee.x + s.shank * std::sin(o.shank), p.knee.y - s.shank * std::cos(o.shank)};
-  const double fx = std::cos(o.foot);  // along the sole, forward
-  const double fy = std::sin(o.foot);
-  const double ux = -fy;  // out of the sole, up
-  const double uy = fx;
-  const Point sole{p.ankle.x - s.ankle_height * ux, p.ankle.y - s.ankle_height * uy};
-  p.heel = {sole.x - s.heel * fx, sole.y - s.heel * fy};
-  p.ball = {sole.x + s.ball * fx, sole.y + s.ball * fy};
-  p.tip = {p.ball.x + s.toe * std::cos(o.toes), p.ball.y + s.toe * std::sin(o.toes)};
-  return p;
+  return forward_kinematics(s, hip, trig(orientation(pelvis_tilt, angles)));
 }
 
 bool JointLimits::contains(const LegAngles& a) const {

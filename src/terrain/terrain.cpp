@@ -7,9 +7,17 @@
 
 namespace fuzzygait::terrain {
 
-Terrain::Terrain(std::vector<Point> points) : points_(std::move(points)) {}
+Terrain::Terrain(std::vector<Point> points) : points_(std::move(points)) {
+  // Once per segment: the walker asks for slopes several times a time step.
+  slopes_.reserve(points_.size() - 1);
+  for (std::size_t i = 0; i + 1 < points_.size(); ++i) {
+    slopes_.push_back(std::atan2(points_[i + 1].y - points_[i].y, points_[i + 1].x - points_[i].x));
+  }
+}
 
-Terrain Terrain::flat() { return Terrain({{-1e6, 0.0}, {1e6, 0.0}}); }
+Terrain Terrain::flat() {
+  return Terrain({{-1e6, 0.0}, {1e6, 0.0}});
+}
 
 Terrain Terrain::polyline(std::vector<Point> points) {
   if (points.size() < 2) throw std::invalid_argument("terrain needs at least two points");
@@ -26,27 +34,16 @@ Terrain Terrain::polyline(std::vector<Point> points) {
 }
 
 std::size_t Terrain::segment(double x) const {
+  if (points_.size() == 2) return 0;  // flat ground and single slopes: nothing to search
   const auto it = std::upper_bound(points_.begin(), points_.end(), x,
                                    [](double v, const Point& p) { return v < p.x; });
   const std::size_t i = static_cast<std::size_t>(it - points_.begin());
   return std::clamp<std::size_t>(i == 0 ? 0 : i - 1, 0, points_.size() - 2);
 }
 
-double Terrain::height(double x) const {
-  if (x <= points_.front().x) return points_.front().y;
-  if (x >= points_.back().x) return points_.back().y;
-  const std::size_t i = segment(x);
-  const Point& a = points_[i];
-  const Point& b = points_[i + 1];
-  return a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x);
-}
-
 double Terrain::slope(double x) const {
   if (x < points_.front().x || x > points_.back().x) return 0.0;
-  const std::size_t i = segment(x);
-  const Point& a = points_[i];
-  const Point& b = points_[i + 1];
-  return std::atan2(b.y - a.y, b.x - a.x);
+  return slopes_[segment(x)];
 }
 
 std::vector<Point> Terrain::profile(double x0, double x1) const {

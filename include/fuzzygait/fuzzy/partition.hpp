@@ -39,14 +39,16 @@ PartitionDegrees<T> partition_degrees(const T* knots, std::size_t count, const T
     return d;
   }
   std::size_t i = 0;
-  while (i + 2 < count && !(x < knots[i + 1])) ++i;
-  // The same expressions as the neighbouring Triangle terms' sides.
+  while (i + 2 < count && !(x < knots[i + 1]))
+    ++i;
+  // knots[i] <= x < knots[i + 1]: the neighbouring Triangle terms (shapes::triangle) come down
+  // to these sides, a degree of 1 where x is within fuzzylite's tolerance of their peak
+  // (is_eq(x, peak), which on this side of the peak is the difference below the tolerance).
+  const T& left = knots[i];
+  const T& right = knots[i + 1];
   d.lower = i;
-  d.lower_degree = shapes::triangle(x, T(i == 0 ? knots[0] - (knots[1] - knots[0]) : knots[i - 1]),
-                                    knots[i], knots[i + 1], T(1.0));
-  d.upper_degree = shapes::triangle(
-      x, knots[i], knots[i + 1],
-      T(i + 2 < count ? knots[i + 2] : knots[i + 1] + (knots[i + 1] - knots[i])), T(1.0));
+  d.lower_degree = x - left < T(kTolerance) ? T(1.0) : T((right - x) / (right - left));
+  d.upper_degree = right - x < T(kTolerance) ? T(1.0) : T((x - left) / (right - left));
   return d;
 }
 
@@ -62,32 +64,37 @@ struct PartitionController {
   std::size_t input_count() const { return knots[1].empty() ? 1 : 2; }
 
   // Same result as the general Evaluator on the equivalent engine: rules fire when their degree
-  // exceeds fuzzylite's tolerance, and sums run in rule order.
+  // exceeds fuzzylite's tolerance, and sums run in rule order. Only the (at most four) rules
+  // around the inputs can fire.
   T evaluate(const T& x0, const T& x1 = T(0.0)) const {
-    if (detail::is_nan(x0) || (!knots[1].empty() && detail::is_nan(x1))) return default_value;
+    const bool two_inputs = !knots[1].empty();
+    if (detail::is_nan(x0) || (two_inputs && detail::is_nan(x1))) return default_value;
     const PartitionDegrees<T> a = partition_degrees(knots[0].data(), knots[0].size(), x0);
-    const std::array<T, 2> row_degrees = {a.lower_degree, a.upper_degree};
     T sum(0.0);
     T weights(0.0);
-    if (knots[1].empty()) {
-      for (std::size_t r = 0; r < 2; ++r) {
-        if (!is_gt(row_degrees[r], T(0.0))) continue;
-        sum += row_degrees[r] * consequents[a.lower + r];
-        weights += row_degrees[r];
-      }
+    // is_gt(degree, 0): for any degree, NaN included, the same as degree >= kTolerance.
+    auto fire = [&](const T& degree, std::size_t rule) {
+      if (!(degree >= T(kTolerance))) return;
+      sum += degree * consequents[rule];
+      weights += degree;
+    };
+    if (!two_inputs) {
+      fire(a.lower_degree, a.lower);
+      fire(a.upper_degree, a.lower + 1);
     } else {
       const PartitionDegrees<T> b = partition_degrees(knots[1].data(), knots[1].size(), x1);
-      const std::array<T, 2> col_degrees = {b.lower_degree, b.upper_degree};
       const std::size_t columns = knots[1].size();
-      for (std::size_t r = 0; r < 2; ++r) {
-        for (std::size_t c = 0; c < 2; ++c) {
-          const T w = conjunction == Conjunction::Product
-                          ? T(row_degrees[r] * col_degrees[c])
-                          : nan_min(row_degrees[r], col_degrees[c]);
-          if (!is_gt(w, T(0.0))) continue;
-          sum += w * consequents[(a.lower + r) * columns + b.lower + c];
-          weights += w;
-        }
+      const std::size_t rule = a.lower * columns + b.lower;
+      if (conjunction == Conjunction::Product) {
+        fire(T(a.lower_degree * b.lower_degree), rule);
+        fire(T(a.lower_degree * b.upper_degree), rule + 1);
+        fire(T(a.upper_degree * b.lower_degree), rule + columns);
+        fire(T(a.upper_degree * b.upper_degree), rule + columns + 1);
+      } else {
+        fire(nan_min(a.lower_degree, b.lower_degree), rule);
+        fire(nan_min(a.lower_degree, b.upper_degree), rule + 1);
+        fire(nan_min(a.upper_degree, b.lower_degree), rule + columns);
+        fire(nan_min(a.upper_degree, b.upper_degree), rule + columns + 1);
       }
     }
     if (!(weights > T(0.0))) return default_value;

@@ -86,6 +86,10 @@ struct ControllerSet {
   // Time constant (s) with which a joint's velocity follows its controller: the limbs' inertia.
   double inertia = 0.03;
   double pelvis_tilt = 0.19;  // radians, anterior +
+  // The swing knee's velocities are those of a thigh sweeping this angle (radians, toe off to
+  // landing); a longer sweep (a longer step) scales them up in proportion, so the knee folds
+  // deeper on longer steps, as people's do. 0: no scaling.
+  double swing_knee_reference_sweep = 0.0;
   std::vector<Controller> controllers;  // indexed by slot()
 
   const Controller& at(LegPhase phase, Joint joint) const {
@@ -95,7 +99,8 @@ struct ControllerSet {
   // Reads DIR/manifest.json and the FLL files it names.
   static ControllerSet load(const std::filesystem::path& directory);
   // The same from texts: `files` maps file names in the manifest to FLL text.
-  static ControllerSet parse(std::string_view manifest, const std::map<std::string, std::string>& files,
+  static ControllerSet parse(std::string_view manifest,
+                             const std::map<std::string, std::string>& files,
                              const std::string& source);
   // The sets compiled into the library (the controllers/ folder at build time).
   static std::vector<std::string> builtin_names();

@@ -8,8 +8,8 @@
 //                    the heel rolls down (heel rocker) and after the heel lifts (push-off); while
 //                    the foot is flat the ground holds the foot and the ankle follows the shank,
 //                    until the controller dorsiflexes the ankle slower than the shank rolls over
-//                    the foot: the heel lifts. Toe: its controller, except after heel-off when the toes stay flat
-//                    on the ground (the MTP angle follows the foot).
+//                    the foot: the heel lifts. Toe: its controller, except after heel-off when the
+//                    toes stay flat on the ground (the MTP angle follows the foot).
 //   pelvis           carried by the leg planted first: its foot anchors the chain, so a planted
 //                    foot never slides, and the body moves on without a jerk at heel strike.
 //   double support   the newly planted leg's hip and knee close the chain by two-link IK onto
@@ -22,6 +22,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "fuzzygait/gait/controllers.hpp"
@@ -44,9 +45,9 @@ const char* name(Event event);
 
 struct LegState {
   Phase phase = Phase::Swing;
-  rig::LegAngles angles;    // radians
-  rig::LegAngles velocity;  // radians per second
-  rig::Point anchor;        // the planted contact point (heel in Heel/Flat, ball in Ball)
+  rig::LegAngles angles;     // radians
+  rig::LegAngles velocity;   // radians per second
+  rig::Point anchor;         // the planted contact point (heel in Heel/Flat, ball in Ball)
   double sweep_start = 0.0;  // thigh inclination where delta = -1 (radians)
   double sweep_end = 0.0;    // stance: thigh inclination where delta = +1
   double target_x = 0.0;     // swing: where the heel should land
@@ -60,7 +61,7 @@ struct WalkerState {
   rig::Point pelvis;
   double pelvis_tilt = 0.0;
   std::array<LegState, 2> legs;
-  int lead = 0;               // leg whose planted foot carries the pelvis; -1 while airborne
+  int lead = 0;                // leg whose planted foot carries the pelvis; -1 while airborne
   double fall_velocity = 0.0;  // m/s, while airborne (only after awkward starts)
   std::uint32_t heel_strikes = 0;
 };
@@ -70,14 +71,22 @@ struct StartPose {
   // mid-stride pose, each foot the lowest point of its leg; the lower foot is put on the ground.
   bool random = false;
   std::uint64_t seed = 0;
+  // The default start walks this long (s) before time 0 on level ground, so that the character
+  // starts in its own steady gait; 0 starts straight from the mid-stride pose.
+  double warm_up = 3.0;
 };
 
 struct WalkerOptions {
   rig::Segments segments = rig::segments_from_stature(1.75);
-  double step_length = 0.70;         // metres, heel to heel
-  double time_step = 1.0 / 240.0;    // seconds; advance() subdivides longer frames
+  double step_length = 0.70;       // metres, heel to heel
+  double time_step = 1.0 / 240.0;  // seconds; advance() subdivides longer frames
   rig::JointLimits limits;
   StartPose start;
+  // Another fuzzy back end for the controllers, e.g. a reference implementation to compare
+  // with: given a slot (see slot()) and the leg's metrics, it returns what that controller
+  // would. Called in place of the set's own engines, eight times a step, so it should not
+  // allocate. Empty (the default): the set's engines.
+  std::function<double(int slot, const MetricValues& metrics)> controller_backend;
 };
 
 struct EventRecord {
@@ -128,8 +137,9 @@ class Walker {
   void settle_foot(int leg, const rig::LegAngles& commanded);
   double stance_target() const;
   double foot_depth(const rig::LegPoints& points) const;
-  void clear_ground(int leg, double max_change);
+  void clear_ground(int leg, double max_change, double margin);
   void update_metrics(int leg, const rig::LegPoints& points, MetricValues& metrics);
+  rig::LegPoints leg_points(int leg, rig::Point hip, const rig::LegAngles& angles);
 
   const ControllerSet* controllers_;
   const terrain::Terrain* terrain_;
@@ -137,9 +147,20 @@ class Walker {
   rig::JointLimits limits_;
   double step_length_;
   double time_step_;
+  double follow_step_ = 0.0;  // the h of follow_
+  double follow_ = 0.0;       // share of the way a joint's velocity goes to its command in h
   double heel_offset_ = 0.0;
   WalkerState state_;
   std::array<fuzzy::Workspace, kSlotCount> workspaces_;
+  std::function<double(int, const MetricValues&)> controller_backend_;
+  // Each leg's segment orientations when their sines and cosines were last computed: a time
+  // step places a leg several times, mostly with unchanged angles (see leg_points()).
+  struct LegTrig {
+    rig::LegOrientation orientation;  // zero, as rig::LegTrig's defaults
+    rig::LegTrig trig;
+    void update(const rig::LegOrientation& o);  // the segments whose orientation changed
+  };
+  std::array<LegTrig, 2> trig_{};
   std::vector<EventRecord> events_;
 };
 

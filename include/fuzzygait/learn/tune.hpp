@@ -17,16 +17,38 @@ namespace fuzzygait::learn {
 struct WalkCondition {
   double stature = 1.75;
   double step_length = 0.70;
-  bool realism = true;  // score the curves against the reference (else contact and timing only)
+  // Curves scored against this reference with this weight (none: contact and timing only).
+  const gait::Normative* reference = nullptr;
+  double realism_weight = 1.0;
 };
 
 struct TuneOptions {
-  std::vector<WalkCondition> conditions = {{1.75, 0.70, true}};
-  gait::Normative reference;
+  std::vector<WalkCondition> conditions;
   std::vector<std::uint64_t> recovery_seeds;  // random starts that must settle into the gait
-  double duration = 10.0;  // s per walk
+  double duration = 10.0;                     // s per walk
+  // Adults walk about 100-120 steps a minute at these step lengths: cycles of 1.0-1.2 s.
+  double cycle_time_min = 1.0;
+  double cycle_time_max = 1.2;
+  double minimum_inertia = 0.02;  // s
+  // Ranges the walk should stay in: stance share (%), peak swing knee flexion (deg), vertical
+  // travel of the pelvis over a cycle (mm). Styles move them.
+  double stance_min = 58.0;
+  double stance_max = 64.0;
+  double knee_peak_min = 55.0;
+  double knee_peak_max = 70.0;
+  double pelvis_range_min = 0.0;
+  double pelvis_range_max = 1e9;
+  // Curve errors (deg RMSE) above which the main condition (realism weight 1) pays steeply: a
+  // little inside the acceptance bounds, so rounding the values keeps them met.
+  double thigh_rmse_max = 5.7;
+  double knee_rmse_max = 7.7;
+  double ankle_rmse_max = 5.7;
   double fps = 120.0;
   int generations = 200;
+  // Then this many generations on the values rounded to `digits` significant digits, the ones
+  // written out for the artist.
+  int polish_generations = 0;
+  int digits = 3;
   int threads = 2;
   std::uint64_t seed = 1;
   double sigma = 0.3;
@@ -37,7 +59,8 @@ struct TuneOptions {
 // interior knots of the partition controllers' inputs.
 class SetParameters {
  public:
-  explicit SetParameters(const gait::ControllerSet& base);
+  // minimum_inertia (s) keeps joint velocities from jumping: tuning never goes below it.
+  explicit SetParameters(const gait::ControllerSet& base, double minimum_inertia = 0.02);
   std::size_t size() const { return scales_.size(); }
   // Scaled so that a change of 1 is a large change for every parameter.
   std::vector<double> values() const;
@@ -54,6 +77,7 @@ class SetParameters {
     std::size_t index;
   };
   gait::ControllerSet base_;
+  double minimum_inertia_;
   std::vector<Knot> knots_;
   std::vector<double> scales_;
   std::vector<double> start_;

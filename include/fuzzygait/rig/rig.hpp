@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <numbers>
 #include <string>
 
 namespace fuzzygait::rig {
@@ -45,8 +46,12 @@ void validate(const Segments& segments);
 
 enum class Side : int { Left = 0, Right = 1 };
 inline constexpr std::array<Side, 2> kSides = {Side::Left, Side::Right};
-inline int index(Side side) { return static_cast<int>(side); }
-inline Side other(Side side) { return side == Side::Left ? Side::Right : Side::Left; }
+inline int index(Side side) {
+  return static_cast<int>(side);
+}
+inline Side other(Side side) {
+  return side == Side::Left ? Side::Right : Side::Left;
+}
 
 // The four degrees of freedom of one leg, radians, clinical conventions.
 struct LegAngles {
@@ -71,7 +76,25 @@ struct LegOrientation {
   double foot = 0.0;
   double toes = 0.0;
 };
-LegOrientation orientation(double pelvis_tilt, const LegAngles& angles);
+inline LegOrientation orientation(double pelvis_tilt, const LegAngles& angles) {
+  LegOrientation o;
+  o.thigh = angles.hip - pelvis_tilt;
+  o.shank = o.thigh - angles.knee;
+  o.foot = o.shank + angles.ankle;
+  o.toes = o.foot + angles.toe;
+  return o;
+}
+
+// Sines and cosines of a LegOrientation: all the trigonometry forward kinematics needs, so that
+// a caller placing a leg several times with the same angles computes it once. The defaults are
+// those of a zero orientation.
+struct LegTrig {
+  double thigh_sin = 0.0, thigh_cos = 1.0;
+  double shank_sin = 0.0, shank_cos = 1.0;
+  double foot_sin = 0.0, foot_cos = 1.0;
+  double toes_sin = 0.0, toes_cos = 1.0;
+};
+LegTrig trig(const LegOrientation& orientation);
 
 struct LegPoints {
   Point hip;
@@ -83,6 +106,22 @@ struct LegPoints {
 };
 LegPoints forward_kinematics(const Segments& segments, Point hip, double pelvis_tilt,
                              const LegAngles& angles);
+// The same from the orientation's trigonometry (the same values, rounding included).
+inline LegPoints forward_kinematics(const Segments& s, Point hip, const LegTrig& t) {
+  LegPoints p;
+  p.hip = hip;
+  p.knee = {hip.x + s.thigh * t.thigh_sin, hip.y - s.thigh * t.thigh_cos};
+  p.ankle = {p.knee.x + s.shank * t.shank_sin, p.knee.y - s.shank * t.shank_cos};
+  const double fx = t.foot_cos;  // along the sole, forward
+  const double fy = t.foot_sin;
+  const double ux = -fy;  // out of the sole, up
+  const double uy = fx;
+  const Point sole{p.ankle.x - s.ankle_height * ux, p.ankle.y - s.ankle_height * uy};
+  p.heel = {sole.x - s.heel * fx, sole.y - s.heel * fy};
+  p.ball = {sole.x + s.ball * fx, sole.y + s.ball * fy};
+  p.tip = {p.ball.x + s.toe * t.toes_cos, p.ball.y + s.toe * t.toes_sin};
+  return p;
+}
 
 // Joint ranges, radians (defaults: typical adult passive ranges of motion).
 struct JointLimits {
@@ -92,7 +131,12 @@ struct JointLimits {
   LegAngles clamp(const LegAngles& a) const;
 };
 
-double degrees(double radians);
-double radians(double degrees);
+// Inline: the walker converts its metrics every time step.
+inline double degrees(double radians) {
+  return radians * 180.0 / std::numbers::pi;
+}
+inline double radians(double degrees) {
+  return degrees * std::numbers::pi / 180.0;
+}
 
 }  // namespace fuzzygait::rig

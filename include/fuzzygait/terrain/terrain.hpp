@@ -2,6 +2,7 @@
 // Flat ground, slopes and stairs are all polylines; the walker asks for height and slope.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "fuzzygait/rig/rig.hpp"
@@ -19,7 +20,15 @@ class Terrain {
   // (vertical risers are two points with x a millimetre apart).
   static Terrain polyline(std::vector<Point> points);
 
-  double height(double x) const;
+  double height(double x) const {
+    // Inline: the walker asks several times a time step, mostly of flat ground.
+    if (x <= points_.front().x) return points_.front().y;
+    if (x >= points_.back().x) return points_.back().y;
+    const std::size_t i = points_.size() == 2 ? 0 : segment(x);
+    const Point& a = points_[i];
+    const Point& b = points_[i + 1];
+    return a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x);
+  }
   // Slope angle (radians, uphill forward +) of the segment under x.
   double slope(double x) const;
   // The profile between x0 and x1 as points, for drawing and files.
@@ -30,6 +39,7 @@ class Terrain {
   explicit Terrain(std::vector<Point> points);
   std::size_t segment(double x) const;
   std::vector<Point> points_;
+  std::vector<double> slopes_;  // of each segment, radians
 };
 
 }  // namespace fuzzygait::terrain

@@ -1,0 +1,302 @@
+// `fuzzygait-bench gait`: character-steps per second of the walker on one core with a controller
+// set, and the same walk with the same controllers evaluated through fuzzylite in the loop
+// (WalkerOptions::controller_backend). Both walks must give the same motion: the controllers'
+// outputs are compared call by call, and the walks by their heel strikes, pelvis and joints.
+#include <fl/Headers.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "fuzzygait/fuzzy/fll.hpp"
+#include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/gait/walker.hpp"
+#include "fuzzygait/rig/rig.hpp"
+#include "fuzzygait/terrain/terrain.hpp"
+
+namespace fuzzygait::bench {
+namespace {
+
+struct Options {
+  std::string style = "default";
+  std::string controllers;   // a controller set folder instead of a built-in style
+  double min_seconds = 0.2;  // wall time per repetition, per side
+  int repetitions = 5;
+  double warm_up = 2.0;       // simulated seconds walked before timing
+  double check_seconds = 20;  // simulated seconds of the motion comparison
+};
+
+// A game advances its characters once per frame; the walker subdivides into time steps.
+constexpr double kFrame = 1.0 / 60.0;
+
+// The set's controllers as fuzzylite engines, read from the FLL fuzzygait writes for them.
+class FuzzyliteControllers {
+ public:
+  explicit FuzzyliteControllers(const gait::ControllerSet& set) {
+    for (std::size_t s = 0; s < slots_.size(); ++s) {
+      const gait::Controller& c = set.controllers[s];
+      Slot& slot = slots_[s];
+      slot.engine.reset(fl::FllImporter().fromString(fuzzy::write_fll(c.engine())));
+      std::string status;
+      if (!slot.engine->isReady(&status)) {
+        throw std::runtime_error(c.source() + ": fuzzylite cannot run it: " + status);
+      }
+      slot.input_count = c.input_count();
+      for (std::size_t i = 0; i < c.input_count(); ++i) {
+        slot.metrics[i] = static_cast<std::size_t>(c.input(i));
+        slot.inputs[i] = slot.engine->getInputVariable(std::string(gait::metric_name(c.input(i))));
+      }
+      slot.output = slot.engine->getOutputVariable(0);
+    }
+  }
+
+  double evaluate(int slot_index, const gait::MetricValues& metrics) {
+    Slot& slot = slots_[static_cast<std::size_t>(slot_index)];
+    for (std::size_t i = 0; i < slot.input_count; ++i) {
+      slot.inputs[i]->setValue(metrics[slot.metrics[i]]);
+    }
+    slot.engine->process();
+    return slot.output->getValue();
+  }
+
+ private:
+  struct Slot {
+    std::unique_ptr<fl::Engine> engine;
+    std::size_t input_count = 0;
+    std::array<std::size_t, 2> metrics{};
+    std::array<fl::InputVariable*, 2> inputs{};
+    fl::OutputVariable* output = nullptr;
+  };
+  std::array<Slot, gait::kSlotCount> slots_;
+};
+
+using Clock = std::chrono::steady_clock;
+
+int steps_per_frame(const gait::WalkerOptions& options) {
+  return std::max(1, static_cast<int>(std::ceil(kFrame / options.time_step - 1e-9)));
+}
+
+// A fresh walker on flat ground, past its warm-up.
+gait::Walker walker_after_warm_up(const gait::ControllerSet& set,
+                                  const gait::WalkerOptions& options,
+                                  const terrain::Terrain& ground, double warm_up) {
+  gait::Walker walker(set, options, ground);
+  for (double t = 0.0; t < warm_up; t += kFrame) {
+    walker.advance(kFrame);
+    walker.clear_events();
+  }
+  return walker;
+}
+
+// Wall seconds to walk `frames` frames, clearing the events every frame as a game would.
+double seconds_for(gait::Walker& walker, long frames) {
+  const Clock::time_point start = Clock::now();
+  for (long f = 0; f < frames; ++f) {
+    walker.advance(kFrame);
+    walker.clear_events();
+  }
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Frames that take about `min_seconds` on a fresh walker.
+long calibrate(const gait::ControllerSet& set, const gait::WalkerOptions& options,
+               const terrain::Terrain& ground, const Options& o) {
+  long frames = 16;
+  for (;;) {
+    gait::Walker walker = walker_after_warm_up(set, options, ground, o.warm_up);
+    const double seconds = seconds_for(walker, frames);
+    if (seconds >= o.min_seconds / 8) {
+      return std::max(
+          1L, static_cast<long>(std::ceil(static_cast<double>(frames) * o.min_seconds / seconds)));
+    }
+    frames *= 2;
+  }
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// The walk the motion check compares: heel strikes, and the pose every frame.
+struct Trace {
+  std::vector<gait::EventRecord> heel_strikes;
+  std::vector<rig::Pose> poses;
+};
+
+Trace trace(const gait::ControllerSet& set, const gait::WalkerOptions& options,
+            const terrain::Terrain& ground, double seconds) {
+  gait::Walker walker(set, options, ground);
+  Trace t;
+  for (double time = 0.0; time < seconds; time += kFrame) {
+    walker.advance(kFrame);
+    for (const gait::EventRecord& e : walker.events()) {
+      if (e.event == gait::Event::HeelStrike) t.heel_strikes.push_back(e);
+    }
+    walker.clear_events();
+    t.poses.push_back(walker.pose());
+  }
+  return t;
+}
+
+// Walks with fuzzylite in the loop while evaluating fuzzygait on the same metrics, and compares
+// the walk with fuzzygait's own; prints the figures and returns the largest output difference.
+double check_motion(const gait::ControllerSet& set, const gait::WalkerOptions& options,
+                    const terrain::Terrain& ground, const Options& o) {
+  FuzzyliteControllers fuzzylite(set);
+  std::array<fuzzy::Workspace, gait::kSlotCount> workspaces;
+  for (std::size_t s = 0; s < workspaces.size(); ++s) {
+    workspaces[s] = set.controllers[s].make_workspace();
+  }
+  double output_difference = 0.0;
+  long calls = 0;
+  gait::WalkerOptions checked = options;
+  checked.controller_backend = [&](int slot, const gait::MetricValues& metrics) {
+    const auto s = static_cast<std::size_t>(slot);
+    const double reference = fuzzylite.evaluate(slot, metrics);
+    const double ours = set.controllers[s].evaluate(metrics, workspaces[s]);
+    const double difference = std::isnan(reference) != std::isnan(ours)
+                                  ? std::numeric_limits<double>::infinity()
+                                  : (std::isnan(reference) ? 0.0 : std::abs(reference - ours));
+    output_difference = std::max(output_difference, difference);
+    ++calls;
+    return reference;
+  };
+  const Trace expected = trace(set, checked, ground, o.check_seconds);
+  const Trace got = trace(set, options, ground, o.check_seconds);
+
+  double strike_time = 0.0;
+  double strike_x = 0.0;
+  const std::size_t strikes = std::min(expected.heel_strikes.size(), got.heel_strikes.size());
+  for (std::size_t i = 0; i < strikes; ++i) {
+    strike_time =
+        std::max(strike_time, std::abs(expected.heel_strikes[i].time - got.heel_strikes[i].time));
+    strike_x = std::max(strike_x,
+                        std::abs(expected.heel_strikes[i].where.x - got.heel_strikes[i].where.x));
+  }
+  double joint = 0.0;
+  for (std::size_t f = 0; f < expected.poses.size(); ++f) {
+    for (std::size_t leg = 0; leg < 2; ++leg) {
+      const rig::LegAngles& a = expected.poses[f].legs[leg];
+      const rig::LegAngles& b = got.poses[f].legs[leg];
+      for (double d : {a.hip - b.hip, a.knee - b.knee, a.ankle - b.ankle, a.toe - b.toe}) {
+        joint = std::max(joint, std::abs(rig::degrees(d)));
+      }
+    }
+  }
+  const rig::Point p = expected.poses.back().pelvis;
+  const rig::Point q = got.poses.back().pelvis;
+  const long steps =
+      std::lround(static_cast<double>(expected.poses.size()) * kFrame / options.time_step);
+  std::printf(
+      "motion check, %.0f s walked (%ld steps) with fuzzylite in the loop against fuzzygait:\n"
+      "  controller outputs  max |diff| %.3g over %ld calls\n"
+      "  heel strikes        %zu vs %zu, max |diff| %.3g s in time, %.3g m in x\n"
+      "  pelvis at the end   max |diff| %.3g m (x %.6f m)\n"
+      "  joint angles        max |diff| %.3g deg over %zu frames\n",
+      o.check_seconds, steps, output_difference, calls, expected.heel_strikes.size(),
+      got.heel_strikes.size(), strike_time, strike_x,
+      std::max(std::abs(p.x - q.x), std::abs(p.y - q.y)), q.x, joint, got.poses.size());
+  if (expected.heel_strikes.size() != got.heel_strikes.size()) {
+    throw std::runtime_error("the walks with fuzzylite and fuzzygait differ in heel strikes");
+  }
+  return output_difference;
+}
+
+void run_gait_benchmark(const Options& o) {
+  const gait::ControllerSet set = o.controllers.empty() ? gait::ControllerSet::builtin(o.style)
+                                                        : gait::ControllerSet::load(o.controllers);
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  const gait::WalkerOptions options;
+  FuzzyliteControllers fuzzylite(set);
+  gait::WalkerOptions through_fuzzylite = options;
+  through_fuzzylite.controller_backend = [&fuzzylite](int slot, const gait::MetricValues& m) {
+    return fuzzylite.evaluate(slot, m);
+  };
+
+  const double steps_in_frame = steps_per_frame(options);
+  std::printf(
+      "fuzzygait-bench gait: controller set '%s', flat ground, time step %.6g s, frames of "
+      "1/60 s (%g steps); one thread; median of %d repetitions of >= %.2f s per side, each on a "
+      "fresh walker after %.1f s of walking; fuzzylite %s\n",
+      set.name.c_str(), options.time_step, steps_in_frame, o.repetitions, o.min_seconds, o.warm_up,
+      fl::fuzzylite::version().c_str());
+  const double output_difference = check_motion(set, options, ground, o);
+  std::fflush(stdout);
+
+  const long fuzzygait_frames = calibrate(set, options, ground, o);
+  const long fuzzylite_frames = calibrate(set, through_fuzzylite, ground, o);
+  std::vector<double> fuzzygait_ns;
+  std::vector<double> fuzzylite_ns;
+  auto time_side = [&](const gait::WalkerOptions& side, long frames, std::vector<double>& ns) {
+    gait::Walker walker = walker_after_warm_up(set, side, ground, o.warm_up);
+    const double seconds = seconds_for(walker, frames);
+    ns.push_back(1e9 * seconds / (static_cast<double>(frames) * steps_in_frame));
+  };
+  for (int r = 0; r < o.repetitions; ++r) {
+    // Alternating which side goes first keeps a slow phase of the machine from favouring one.
+    if (r % 2 == 0) {
+      time_side(options, fuzzygait_frames, fuzzygait_ns);
+      time_side(through_fuzzylite, fuzzylite_frames, fuzzylite_ns);
+    } else {
+      time_side(through_fuzzylite, fuzzylite_frames, fuzzylite_ns);
+      time_side(options, fuzzygait_frames, fuzzygait_ns);
+    }
+    std::printf(
+        "run %d: fuzzygait %8.1f ns per step (%ld steps), fuzzylite %8.1f ns per step "
+        "(%ld steps)\n",
+        r + 1, fuzzygait_ns.back(),
+        static_cast<long>(static_cast<double>(fuzzygait_frames) * steps_in_frame),
+        fuzzylite_ns.back(),
+        static_cast<long>(static_cast<double>(fuzzylite_frames) * steps_in_frame));
+    std::fflush(stdout);
+  }
+  const double ours = median(fuzzygait_ns);
+  const double theirs = median(fuzzylite_ns);
+  for (const auto& [label, ns] : {std::pair{"fuzzygait", ours}, std::pair{"fuzzylite", theirs}}) {
+    std::printf("%-10s %8.1f ns per step, %6.3f M steps per second, real-time factor %.0f\n", label,
+                ns, 1e3 / ns, options.time_step * 1e9 / ns);
+  }
+  std::printf("character-steps per second: %.0f\n", 1e9 / ours);
+  std::printf("speedup vs fuzzylite: %.2f\n", theirs / ours);
+  if (!(output_difference <= 1e-9)) {
+    throw std::runtime_error("fuzzylite and fuzzygait controller outputs differ by more than 1e-9");
+  }
+}
+
+}  // namespace
+
+void add_gait_command(CLI::App& app) {
+  auto options = std::make_shared<Options>();
+  CLI::App* gait = app.add_subcommand(
+      "gait", "Character-steps per second of the walker, against fuzzylite in the loop");
+  gait->add_option("--style", options->style, "Built-in controller set")->capture_default_str();
+  gait->add_option("--controllers", options->controllers,
+                   "Controller set folder (manifest.json + FLL) instead of a built-in set");
+  gait->add_option("--min-time", options->min_seconds,
+                   "Wall seconds each side walks per repetition, at least")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  gait->add_option("--repetitions", options->repetitions, "Repetitions; the median is reported")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  gait->add_option("--warm-up", options->warm_up, "Simulated seconds walked before timing")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  gait->add_option("--check-time", options->check_seconds,
+                   "Simulated seconds of the motion comparison with fuzzylite in the loop")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  gait->callback([options]() { run_gait_benchmark(*options); });
+}
+
+}  // namespace fuzzygait::bench
