@@ -2,7 +2,8 @@
 # fuzzygait's two entry points (see README):
 #   ./run.sh          installs what is missing, builds, and walks the default character (out/)
 #   ./run.sh test     installs what is missing, builds, and runs every test
-#                     (Release build, ASan+UBSan build, libFuzzer run of the FLL reader)
+#                     (Release build, ASan+UBSan build, libFuzzer runs of the FLL reader,
+#                     the FLD reader and the formula compiler)
 set -euo pipefail
 cd "$(dirname "$0")"
 root=$(pwd)
@@ -27,19 +28,18 @@ case "$mode" in
     ;;
   test)
     echo "== Release build and tests"
-    configure_and_build build -DCMAKE_BUILD_TYPE=Release
+    # fuzzylite is installed above: its conformance tests must run, not be skipped.
+    configure_and_build build -DCMAKE_BUILD_TYPE=Release -DFUZZYGAIT_REQUIRE_FUZZYLITE=ON
     (cd "$root/build" && ctest --output-on-failure -j "$jobs")
     echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
     configure_and_build build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFUZZYGAIT_SANITIZE=ON \
-      -DFUZZYGAIT_BUILD_BENCH=OFF
+      -DFUZZYGAIT_BUILD_BENCH=OFF -DFUZZYGAIT_REQUIRE_FUZZYLITE=ON
     (cd "$root/build-sanitize" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --output-on-failure -j "$jobs" -LE slow)
-    if [[ -f "$root/fuzz/CMakeLists.txt" ]] && grep -q add_executable "$root/fuzz/CMakeLists.txt"; then
-      echo "== libFuzzer run of the FLL reader (clang)"
-      configure_and_build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-        -DFUZZYGAIT_FUZZ=ON -DFUZZYGAIT_BUILD_TESTS=ON -DFUZZYGAIT_BUILD_BENCH=OFF
-      (cd "$root/build-fuzz" && ctest --output-on-failure -L fuzz)
-    fi
+    echo "== libFuzzer runs of the FLL reader, the FLD reader and the formula compiler (clang)"
+    configure_and_build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+      -DFUZZYGAIT_FUZZ=ON
+    (cd "$root/build-fuzz" && ctest --output-on-failure -L fuzz)
     echo "== all tests passed"
     ;;
   *)

@@ -4,7 +4,6 @@
 #include <fl/Headers.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -20,6 +19,7 @@
 #include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/fuzzy/fld.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
+#include "timing.hpp"
 
 namespace fuzzygait::bench {
 namespace {
@@ -133,36 +133,21 @@ std::string compare_outputs(const std::vector<double>& expected, const std::vect
   return text;
 }
 
-using Clock = std::chrono::steady_clock;
-
 template <class Side>
 double seconds_for(Side& side, long passes, const std::vector<double>& rows,
                    std::vector<double>& outputs) {
-  const Clock::time_point start = Clock::now();
-  for (long p = 0; p < passes; ++p)
-    side.run(rows, outputs);
-  return std::chrono::duration<double>(Clock::now() - start).count();
+  return wall_seconds([&] {
+    for (long p = 0; p < passes; ++p)
+      side.run(rows, outputs);
+  });
 }
 
-// Passes over the dataset that take about `min_seconds`.
+// Passes over the dataset that take about `min_seconds`, from one pass up.
 template <class Side>
-long calibrate(Side& side, double min_seconds, const std::vector<double>& rows,
-               std::vector<double>& outputs) {
-  long passes = 1;
-  for (;;) {
-    const double seconds = seconds_for(side, passes, rows, outputs);
-    if (seconds >= min_seconds / 8) {
-      return std::max(
-          1L, static_cast<long>(std::ceil(static_cast<double>(passes) * min_seconds / seconds)));
-    }
-    passes *= 2;
-  }
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+long passes_for(Side& side, double min_seconds, const std::vector<double>& rows,
+                std::vector<double>& outputs) {
+  return calibrate(1, min_seconds,
+                   [&](long passes) { return seconds_for(side, passes, rows, outputs); });
 }
 
 struct Result {
@@ -200,8 +185,8 @@ Result measure(const fs::path& fll, const std::string& label, const Options& opt
   fuzzygait.run(rows, fuzzygait_outputs);
   result.outputs = compare_outputs(fuzzylite_outputs, fuzzygait_outputs);
 
-  const long fuzzylite_passes = calibrate(fuzzylite, options.min_seconds, rows, fuzzylite_outputs);
-  const long fuzzygait_passes = calibrate(fuzzygait, options.min_seconds, rows, fuzzygait_outputs);
+  const long fuzzylite_passes = passes_for(fuzzylite, options.min_seconds, rows, fuzzylite_outputs);
+  const long fuzzygait_passes = passes_for(fuzzygait, options.min_seconds, rows, fuzzygait_outputs);
   const double evaluations = static_cast<double>(row_count);
   std::vector<double> fuzzylite_ns;
   std::vector<double> fuzzygait_ns;
@@ -216,14 +201,7 @@ Result measure(const fs::path& fll, const std::string& label, const Options& opt
                              seconds_for(fuzzygait, fuzzygait_passes, rows, fuzzygait_outputs) /
                              (evaluations * static_cast<double>(fuzzygait_passes)));
     };
-    // Alternating which side goes first keeps a slow phase of the machine from favouring one.
-    if (r % 2 == 0) {
-      time_fuzzylite();
-      time_fuzzygait();
-    } else {
-      time_fuzzygait();
-      time_fuzzylite();
-    }
+    run_alternating(r, time_fuzzylite, time_fuzzygait);
   }
   result.fuzzylite_ns = median(fuzzylite_ns);
   result.fuzzygait_ns = median(fuzzygait_ns);

@@ -1,12 +1,12 @@
 // `fuzzygait-bench gait`: character-steps per second of the walker on one core with a controller
 // set, and the same walk with the same controllers evaluated through fuzzylite in the loop
-// (WalkerOptions::controller_backend). Both walks must give the same motion: the controllers'
-// outputs are compared call by call, and the walks by their heel strikes, pelvis and joints.
+// (WalkerOptions::controller_backend). Both walks must give the same motion before anything is
+// timed: the controllers' outputs agree within 1e-9 call by call, and the walks' heel strikes
+// (time and place), final pelvis and joint angles are identical.
 #include <fl/Headers.h>
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -21,6 +21,7 @@
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/rig/rig.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
+#include "timing.hpp"
 
 namespace fuzzygait::bench {
 namespace {
@@ -78,8 +79,6 @@ class FuzzyliteControllers {
   std::array<Slot, gait::kSlotCount> slots_;
 };
 
-using Clock = std::chrono::steady_clock;
-
 int steps_per_frame(const gait::WalkerOptions& options) {
   return std::max(1, static_cast<int>(std::ceil(kFrame / options.time_step - 1e-9)));
 }
@@ -98,33 +97,21 @@ gait::Walker walker_after_warm_up(const gait::ControllerSet& set,
 
 // Wall seconds to walk `frames` frames, clearing the events every frame as a game would.
 double seconds_for(gait::Walker& walker, long frames) {
-  const Clock::time_point start = Clock::now();
-  for (long f = 0; f < frames; ++f) {
-    walker.advance(kFrame);
-    walker.clear_events();
-  }
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Frames that take about `min_seconds` on a fresh walker.
-long calibrate(const gait::ControllerSet& set, const gait::WalkerOptions& options,
-               const terrain::Terrain& ground, const Options& o) {
-  long frames = 16;
-  for (;;) {
-    gait::Walker walker = walker_after_warm_up(set, options, ground, o.warm_up);
-    const double seconds = seconds_for(walker, frames);
-    if (seconds >= o.min_seconds / 8) {
-      return std::max(
-          1L, static_cast<long>(std::ceil(static_cast<double>(frames) * o.min_seconds / seconds)));
+  return wall_seconds([&] {
+    for (long f = 0; f < frames; ++f) {
+      walker.advance(kFrame);
+      walker.clear_events();
     }
-    frames *= 2;
-  }
+  });
 }
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+// Frames that take about `min_seconds` on a fresh walker, from 16 frames up.
+long frames_for(const gait::ControllerSet& set, const gait::WalkerOptions& options,
+                const terrain::Terrain& ground, const Options& o) {
+  return calibrate(16, o.min_seconds, [&](long frames) {
+    gait::Walker walker = walker_after_warm_up(set, options, ground, o.warm_up);
+    return seconds_for(walker, frames);
+  });
 }
 
 // The walk the motion check compares: heel strikes, and the pose every frame.
@@ -149,9 +136,10 @@ Trace trace(const gait::ControllerSet& set, const gait::WalkerOptions& options,
 }
 
 // Walks with fuzzylite in the loop while evaluating fuzzygait on the same metrics, and compares
-// the walk with fuzzygait's own; prints the figures and returns the largest output difference.
-double check_motion(const gait::ControllerSet& set, const gait::WalkerOptions& options,
-                    const terrain::Terrain& ground, const Options& o) {
+// the walk with fuzzygait's own; prints the figures, then throws std::runtime_error unless the
+// controllers' outputs agree within 1e-9 and the walks are identical.
+void check_motion(const gait::ControllerSet& set, const gait::WalkerOptions& options,
+                  const terrain::Terrain& ground, const Options& o) {
   FuzzyliteControllers fuzzylite(set);
   std::array<fuzzy::Workspace, gait::kSlotCount> workspaces;
   for (std::size_t s = 0; s < workspaces.size(); ++s) {
@@ -174,27 +162,35 @@ double check_motion(const gait::ControllerSet& set, const gait::WalkerOptions& o
   const Trace expected = trace(set, checked, ground, o.check_seconds);
   const Trace got = trace(set, options, ground, o.check_seconds);
 
+  // The figures printed, and exact comparisons for the verdict (a NaN compares unequal too).
   double strike_time = 0.0;
   double strike_x = 0.0;
+  bool same_strikes = expected.heel_strikes.size() == got.heel_strikes.size();
   const std::size_t strikes = std::min(expected.heel_strikes.size(), got.heel_strikes.size());
   for (std::size_t i = 0; i < strikes; ++i) {
-    strike_time =
-        std::max(strike_time, std::abs(expected.heel_strikes[i].time - got.heel_strikes[i].time));
-    strike_x = std::max(strike_x,
-                        std::abs(expected.heel_strikes[i].where.x - got.heel_strikes[i].where.x));
+    const gait::EventRecord& a = expected.heel_strikes[i];
+    const gait::EventRecord& b = got.heel_strikes[i];
+    strike_time = std::max(strike_time, std::abs(a.time - b.time));
+    strike_x = std::max(strike_x, std::abs(a.where.x - b.where.x));
+    same_strikes =
+        same_strikes && a.time == b.time && a.where.x == b.where.x && a.where.y == b.where.y;
   }
   double joint = 0.0;
-  for (std::size_t f = 0; f < expected.poses.size(); ++f) {
+  bool same_joints = expected.poses.size() == got.poses.size();
+  for (std::size_t f = 0; f < std::min(expected.poses.size(), got.poses.size()); ++f) {
     for (std::size_t leg = 0; leg < 2; ++leg) {
       const rig::LegAngles& a = expected.poses[f].legs[leg];
       const rig::LegAngles& b = got.poses[f].legs[leg];
       for (double d : {a.hip - b.hip, a.knee - b.knee, a.ankle - b.ankle, a.toe - b.toe}) {
         joint = std::max(joint, std::abs(rig::degrees(d)));
       }
+      same_joints =
+          same_joints && a.hip == b.hip && a.knee == b.knee && a.ankle == b.ankle && a.toe == b.toe;
     }
   }
   const rig::Point p = expected.poses.back().pelvis;
   const rig::Point q = got.poses.back().pelvis;
+  const bool same_pelvis = p.x == q.x && p.y == q.y;
   const long steps =
       std::lround(static_cast<double>(expected.poses.size()) * kFrame / options.time_step);
   std::printf(
@@ -206,10 +202,20 @@ double check_motion(const gait::ControllerSet& set, const gait::WalkerOptions& o
       o.check_seconds, steps, output_difference, calls, expected.heel_strikes.size(),
       got.heel_strikes.size(), strike_time, strike_x,
       std::max(std::abs(p.x - q.x), std::abs(p.y - q.y)), q.x, joint, got.poses.size());
-  if (expected.heel_strikes.size() != got.heel_strikes.size()) {
+  std::fflush(stdout);
+  if (!(output_difference <= 1e-9)) {
+    throw std::runtime_error("fuzzylite and fuzzygait controller outputs differ by more than 1e-9");
+  }
+  if (!same_strikes) {
     throw std::runtime_error("the walks with fuzzylite and fuzzygait differ in heel strikes");
   }
-  return output_difference;
+  if (!same_pelvis) {
+    throw std::runtime_error(
+        "the walks with fuzzylite and fuzzygait end with the pelvis elsewhere");
+  }
+  if (!same_joints) {
+    throw std::runtime_error("the walks with fuzzylite and fuzzygait differ in joint angles");
+  }
 }
 
 void run_gait_benchmark(const Options& o) {
@@ -230,11 +236,10 @@ void run_gait_benchmark(const Options& o) {
       "fresh walker after %.1f s of walking; fuzzylite %s\n",
       set.name.c_str(), options.time_step, steps_in_frame, o.repetitions, o.min_seconds, o.warm_up,
       fl::fuzzylite::version().c_str());
-  const double output_difference = check_motion(set, options, ground, o);
-  std::fflush(stdout);
+  check_motion(set, options, ground, o);
 
-  const long fuzzygait_frames = calibrate(set, options, ground, o);
-  const long fuzzylite_frames = calibrate(set, through_fuzzylite, ground, o);
+  const long fuzzygait_frames = frames_for(set, options, ground, o);
+  const long fuzzylite_frames = frames_for(set, through_fuzzylite, ground, o);
   std::vector<double> fuzzygait_ns;
   std::vector<double> fuzzylite_ns;
   auto time_side = [&](const gait::WalkerOptions& side, long frames, std::vector<double>& ns) {
@@ -243,14 +248,9 @@ void run_gait_benchmark(const Options& o) {
     ns.push_back(1e9 * seconds / (static_cast<double>(frames) * steps_in_frame));
   };
   for (int r = 0; r < o.repetitions; ++r) {
-    // Alternating which side goes first keeps a slow phase of the machine from favouring one.
-    if (r % 2 == 0) {
-      time_side(options, fuzzygait_frames, fuzzygait_ns);
-      time_side(through_fuzzylite, fuzzylite_frames, fuzzylite_ns);
-    } else {
-      time_side(through_fuzzylite, fuzzylite_frames, fuzzylite_ns);
-      time_side(options, fuzzygait_frames, fuzzygait_ns);
-    }
+    run_alternating(
+        r, [&] { time_side(options, fuzzygait_frames, fuzzygait_ns); },
+        [&] { time_side(through_fuzzylite, fuzzylite_frames, fuzzylite_ns); });
     std::printf(
         "run %d: fuzzygait %8.1f ns per step (%ld steps), fuzzylite %8.1f ns per step "
         "(%ld steps)\n",
@@ -268,9 +268,6 @@ void run_gait_benchmark(const Options& o) {
   }
   std::printf("character-steps per second: %.0f\n", 1e9 / ours);
   std::printf("speedup vs fuzzylite: %.2f\n", theirs / ours);
-  if (!(output_difference <= 1e-9)) {
-    throw std::runtime_error("fuzzylite and fuzzygait controller outputs differ by more than 1e-9");
-  }
 }
 
 }  // namespace

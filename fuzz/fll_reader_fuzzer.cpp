@@ -24,6 +24,7 @@
 namespace {
 
 using namespace fuzzygait::fuzzy;
+using fuzzygait::fuzz::check_names_source;
 using fuzzygait::fuzz::fail;
 
 constexpr std::string_view kSource = "fuzz.fll";
@@ -158,9 +159,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     engine = read_fll(text, kSource);
   } catch (const ParseError& e) {
-    if (std::string_view(e.what()).substr(0, kSource.size()) != kSource) {
-      fail("a ParseError does not name the source", e.what());
-    }
+    check_names_source(e, kSource);
     const auto lines = std::count(text.begin(), text.end(), '\n') + 1;
     if (e.line() < 1 || e.line() > lines) fail("a ParseError names no line of the text", e.what());
     return 0;

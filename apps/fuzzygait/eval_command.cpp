@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "commands.hpp"
 #include "fuzzygait/gait/evaluation.hpp"
@@ -13,6 +14,22 @@
 #include "fuzzygait/io/walk_csv.hpp"
 
 namespace fuzzygait::cli {
+namespace {
+
+std::ifstream open_or_throw(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open the file");
+  return in;
+}
+
+// The terrain CSV at `path`, or flat ground when `path` is empty.
+terrain::Terrain load_terrain(const std::string& path) {
+  if (path.empty()) return terrain::Terrain::flat();
+  std::ifstream in = open_or_throw(path);
+  return io::read_terrain_csv(in, path);
+}
+
+}  // namespace
 
 void add_eval_command(CLI::App& app) {
   struct Options {
@@ -33,8 +50,7 @@ void add_eval_command(CLI::App& app) {
   eval->add_option("--step", o->step, "Commanded step length, m, for the step error");
   eval->add_option("--json", o->json, "Write the figures as JSON to this file ('-' for stdout)");
   eval->callback([o]() {
-    std::ifstream in(o->csv);
-    if (!in) throw std::runtime_error(o->csv + ": cannot open the file");
+    std::ifstream in = open_or_throw(o->csv);
     const gait::Motion motion = io::read_walk_csv(in, o->csv);
     std::string terrain_path = o->terrain;
     if (terrain_path.empty()) {
@@ -42,17 +58,11 @@ void add_eval_command(CLI::App& app) {
       guess.replace_extension(".terrain.csv");
       if (std::filesystem::exists(guess)) terrain_path = guess.string();
     }
-    std::optional<terrain::Terrain> ground;
-    if (terrain_path.empty()) {
-      ground = terrain::Terrain::flat();
-    } else {
-      std::ifstream t(terrain_path);
-      if (!t) throw std::runtime_error(terrain_path + ": cannot open the file");
-      ground = io::read_terrain_csv(t, terrain_path);
-    }
+    const terrain::Terrain ground = load_terrain(terrain_path);
     const gait::Normative reference = io::load_normative(o->reference);
-    const std::optional<double> step = o->step > 0.0 ? std::optional<double>(o->step) : std::nullopt;
-    const gait::GaitReport report = gait::evaluate(motion, *ground, &reference, step);
+    const std::optional<double> step =
+        o->step > 0.0 ? std::optional<double>(o->step) : std::nullopt;
+    const gait::GaitReport report = gait::evaluate(motion, ground, &reference, step);
     const std::string json = gait::to_json(report);
     if (o->json == "-") {
       std::cout << json << "\n";

@@ -13,47 +13,42 @@ namespace fuzzygait::cli {
 
 void add_tune_command(CLI::App& app) {
   struct Options {
+    learn::TuneOptions tune;
     std::string controllers;
     std::string style = "default";
     std::string output;
     std::string reference = "schwartz2008_free";
     std::string slower = "schwartz2008_slow";
     std::string faster = "schwartz2008_fast";
-    int generations = 200;
-    int threads = 2;
-    int digits = 3;
-    int polish = 0;
-    std::uint64_t seed = 1;
-    double sigma = 0.3;
-    double duration = 10.0;
     bool grid = false;
     int recovery = 0;
-    std::vector<double> cycle = {1.0, 1.2};
-    std::vector<double> stance = {58.0, 64.0};
-    std::vector<double> knee_peak = {55.0, 70.0};
-    std::vector<double> pelvis_range = {0.0, 1e9};
-    double minimum_inertia = 0.02;
+    // Ranges, low and high, into tune's _min and _max fields.
+    std::vector<double> cycle = {tune.cycle_time_min, tune.cycle_time_max};
+    std::vector<double> stance = {tune.stance_min, tune.stance_max};
+    std::vector<double> knee_peak = {tune.knee_peak_min, tune.knee_peak_max};
+    std::vector<double> pelvis_range = {tune.pelvis_range_min, tune.pelvis_range_max};
     std::string name;         // of the written set; default: the starting set's
     std::string description;  // likewise
   };
   auto o = std::make_shared<Options>();
+  learn::TuneOptions& t = o->tune;
   CLI::App* tune = app.add_subcommand(
       "tune", "Fit a controller set's velocities to normative curves (CMA-ES over whole walks)");
   tune->add_option("--controllers", o->controllers, "Start from this controller set folder");
   tune->add_option("--style", o->style, "Start from this built-in set (default: default)");
   tune->add_option("-o,--output", o->output, "Folder to write the tuned set to")->required();
   tune->add_option("--reference", o->reference, "Normative curves: built-in name or CSV file");
-  tune->add_option("--generations", o->generations, "CMA-ES generations")
+  tune->add_option("--generations", t.generations, "CMA-ES generations")
       ->check(CLI::PositiveNumber);
-  tune->add_option("--threads", o->threads, "Walks evaluated in parallel")
+  tune->add_option("--threads", t.threads, "Walks evaluated in parallel")
       ->check(CLI::PositiveNumber);
-  tune->add_option("--digits", o->digits, "Significant digits kept in the written values")
+  tune->add_option("--digits", t.digits, "Significant digits kept in the written values")
       ->check(CLI::Range(1, 17));
-  tune->add_option("--polish", o->polish,
+  tune->add_option("--polish", t.polish_generations,
                    "Generations of polishing on the rounded values (default 0)");
-  tune->add_option("--seed", o->seed, "Random seed (the result is deterministic for a seed)");
-  tune->add_option("--sigma", o->sigma, "Initial CMA-ES step (scaled units)");
-  tune->add_option("--duration", o->duration, "Seconds walked per evaluation");
+  tune->add_option("--seed", t.seed, "Random seed (the result is deterministic for a seed)");
+  tune->add_option("--sigma", t.sigma, "Initial CMA-ES step (scaled units)");
+  tune->add_option("--duration", t.duration, "Seconds walked per evaluation");
   tune->add_option("--recovery", o->recovery,
                    "Also start from this many random poses that must settle into the gait");
   tune->add_option("--cycle", o->cycle, "Wanted gait cycle time range, s (default 1.0 1.2)")
@@ -66,7 +61,7 @@ void add_tune_command(CLI::App& app) {
   tune->add_option("--pelvis-range", o->pelvis_range,
                    "Wanted vertical travel of the pelvis over a cycle, mm (default any)")
       ->expected(2);
-  tune->add_option("--minimum-inertia", o->minimum_inertia,
+  tune->add_option("--minimum-inertia", t.minimum_inertia,
                    "Smallest inertia time constant the tuning may choose, s (default 0.02)");
   tune->add_option("--name", o->name, "Name written into the tuned set's manifest (a style)");
   tune->add_option("--description", o->description,
@@ -80,41 +75,27 @@ void add_tune_command(CLI::App& app) {
     const gait::ControllerSet start = o->controllers.empty()
                                           ? gait::ControllerSet::builtin(o->style)
                                           : gait::ControllerSet::load(o->controllers);
-    learn::TuneOptions options;
+    learn::TuneOptions& options = o->tune;
     const gait::Normative reference = io::load_normative(o->reference);
     // The slow and fast groups of the same study, for walks with shorter and longer steps.
     std::optional<gait::Normative> slow;
     std::optional<gait::Normative> fast;
-    options.conditions.push_back({1.75, 0.70, &reference, 1.0});
     if (o->grid) {
       slow = io::load_normative(o->slower);
       fast = io::load_normative(o->faster);
-      options.conditions.push_back({1.75, 0.55, &*slow, 0.3});
-      options.conditions.push_back({1.75, 0.85, &*fast, 0.3});
-      options.conditions.push_back({1.75, 0.50, nullptr, 1.0});
-      // The grid's corners: the shortest and the longest steps for the leg.
-      options.conditions.push_back({2.00, 0.50, nullptr, 1.0});
-      options.conditions.push_back({1.50, 0.85, nullptr, 1.0});
+      options.conditions = learn::grid_conditions(reference, *slow, *fast);
+    } else {
+      options.conditions = {learn::main_condition(reference)};
     }
-    options.generations = o->generations;
-    options.threads = o->threads;
-    options.seed = o->seed;
-    options.sigma = o->sigma;
-    options.duration = o->duration;
-    options.digits = o->digits;
-    options.polish_generations = o->polish;
     options.cycle_time_min = o->cycle.at(0);
     options.cycle_time_max = o->cycle.at(1);
-    options.minimum_inertia = o->minimum_inertia;
     options.stance_min = o->stance.at(0);
     options.stance_max = o->stance.at(1);
     options.knee_peak_min = o->knee_peak.at(0);
     options.knee_peak_max = o->knee_peak.at(1);
     options.pelvis_range_min = o->pelvis_range.at(0);
     options.pelvis_range_max = o->pelvis_range.at(1);
-    for (int seed = 0; seed < o->recovery; ++seed) {
-      options.recovery_seeds.push_back(1000 + static_cast<std::uint64_t>(seed));
-    }
+    options.recovery_seeds = learn::recovery_seeds(o->recovery);
     options.progress = [](int generation, double cost) {
       if (generation % 10 == 0)
         std::cerr << "generation " << generation << ": cost " << cost << "\n";
@@ -122,17 +103,14 @@ void add_tune_command(CLI::App& app) {
     std::string report;
     std::cout << "start: cost " << learn::walk_cost(start, options, &report) << "\n" << report;
     const learn::TuneResult result = learn::tune(start, options);
-    const learn::SetParameters parameters(result.set, options.minimum_inertia);
-    gait::ControllerSet rounded = options.polish_generations > 0
-                                      ? result.set
-                                      : parameters.rounded(parameters.values(), o->digits);
+    gait::ControllerSet rounded = result.rounded;
     if (!o->name.empty()) rounded.name = o->name;
     if (!o->description.empty()) rounded.description = o->description;
     report.clear();
-    const double tuned = learn::walk_cost(result.set, options);
     const double final_cost = learn::walk_cost(rounded, options, &report);
-    std::cout << "tuned: cost " << tuned << " (" << result.evaluations << " walks)\n";
-    std::cout << "rounded to " << o->digits << " digits: cost " << final_cost << "\n" << report;
+    std::cout << "tuned: cost " << result.cost << " (" << result.evaluations << " walks)\n";
+    std::cout << "rounded to " << options.digits << " digits: cost " << final_cost << "\n"
+              << report;
     io::save_controller_set(rounded, o->output);
     std::cout << "written to " << o->output << "\n";
   });

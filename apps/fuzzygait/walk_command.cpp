@@ -1,6 +1,5 @@
 // `fuzzygait walk`: walks a character with a controller set and writes its files: the walk CSV,
 // the terrain, a BVH, the joint-angle curves against the normative band, and the poses.
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -9,6 +8,7 @@
 
 #include "commands.hpp"
 #include "fuzzygait/gait/evaluation.hpp"
+#include "fuzzygait/gait/motion.hpp"
 #include "fuzzygait/io/bvh.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
@@ -52,38 +52,8 @@ gait::StartPose parse_start(const std::string& text) {
       return start;
     }
   }
-  throw std::invalid_argument("--start-pose must be 'default' or 'random:SEED', got '" + text + "'");
-}
-
-// Walks until `cycles` left gait cycles have completed after the first heel strike, sampling at
-// fps; gives up (with an error) if that takes ten times as long as a slow walk should.
-gait::Motion walk_cycles(gait::Walker& walker, int cycles, double fps) {
-  gait::Motion motion;
-  motion.fps = fps;
-  motion.segments = walker.segments();
-  const double limit = 3.0 * (cycles + 2);
-  int left_strikes = 0;
-  for (std::size_t i = 0;; ++i) {
-    if (i > 0) walker.advance(1.0 / fps);
-    for (const gait::EventRecord& e : walker.events()) {
-      if (e.side == rig::Side::Left && e.event == gait::Event::HeelStrike) ++left_strikes;
-    }
-    walker.clear_events();
-    gait::Frame f;
-    f.time = static_cast<double>(i) / fps;
-    f.pose = walker.pose();
-    for (rig::Side side : rig::kSides) {
-      f.points[rig::index(side)] = walker.points(side);
-      f.contact[rig::index(side)] = walker.in_contact(side);
-    }
-    motion.frames.push_back(f);
-    if (left_strikes >= cycles + 2) break;
-    if (f.time > limit) {
-      throw std::runtime_error("the walker did not complete " + std::to_string(cycles) +
-                               " cycles in " + std::to_string(limit) + " s");
-    }
-  }
-  return motion;
+  throw std::invalid_argument("--start-pose must be 'default' or 'random:SEED', got '" + text +
+                              "'");
 }
 
 }  // namespace
@@ -131,7 +101,7 @@ void add_walk_command(CLI::App& app) {
     const terrain::Terrain ground = terrain::Terrain::flat();
     gait::Walker walker(set, options, ground);
     const gait::Motion motion = o->duration > 0.0 ? gait::record(walker, o->duration, o->fps)
-                                                  : walk_cycles(walker, o->cycles, o->fps);
+                                                  : gait::record_cycles(walker, o->cycles, o->fps);
     const std::filesystem::path prefix(o->prefix);
     if (prefix.has_parent_path()) std::filesystem::create_directories(prefix.parent_path());
     {
@@ -174,7 +144,8 @@ void add_walk_command(CLI::App& app) {
       std::cout << "no poses: " << e.what() << "\n";
     }
     std::cout << "wrote";
-    for (const std::string& f : written) std::cout << " " << f;
+    for (const std::string& f : written)
+      std::cout << " " << f;
     std::cout << "\n";
   });
 }

@@ -6,11 +6,23 @@
 #include <stdexcept>
 
 #include "fuzzygait/fuzzy/formula.hpp"
+#include "text.hpp"
 
 namespace fuzzygait::fuzzy {
 namespace {
 
-bool same(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+bool same(double a, double b) {
+  return a == b || (std::isnan(a) && std::isnan(b));
+}
+
+// The element of `list` with that name (variables, terms), or nullptr.
+template <class Named>
+const Named* find_named(const std::vector<Named>& list, std::string_view name) {
+  for (const Named& item : list) {
+    if (item.name == name) return &item;
+  }
+  return nullptr;
+}
 
 template <class Enum, std::size_t N>
 std::optional<Enum> lookup(const std::array<std::string_view, N>& names, std::string_view text) {
@@ -21,15 +33,16 @@ std::optional<Enum> lookup(const std::array<std::string_view, N>& names, std::st
 }
 
 constexpr std::array<std::string_view, 8> kTNormNames = {
-    "none",           "AlgebraicProduct", "BoundedDifference", "DrasticProduct",
-    "EinsteinProduct", "HamacherProduct", "Minimum",           "NilpotentMinimum"};
+    "none",           "AlgebraicProduct", "BoundedDifference",
+    "DrasticProduct", "EinsteinProduct",  "HamacherProduct",
+    "Minimum",        "NilpotentMinimum"};
 constexpr std::array<std::string_view, 10> kSNormNames = {
     "none",        "AlgebraicSum", "BoundedSum",       "DrasticSum",    "EinsteinSum",
     "HamacherSum", "Maximum",      "NilpotentMaximum", "NormalizedSum", "UnboundedSum"};
 constexpr std::array<std::string_view, 6> kHedgeNames = {"any",    "extremely", "not",
                                                          "seldom", "somewhat",  "very"};
 constexpr std::array<std::string_view, 7> kDefuzzifierNames = {
-    "Bisector",      "Centroid",        "LargestOfMaximum", "MeanOfMaximum",
+    "Bisector",          "Centroid",        "LargestOfMaximum", "MeanOfMaximum",
     "SmallestOfMaximum", "WeightedAverage", "WeightedSum"};
 constexpr std::array<std::string_view, 3> kWeightedTypeNames = {"Automatic", "TakagiSugeno",
                                                                 "Tsukamoto"};
@@ -37,21 +50,8 @@ constexpr std::array<std::string_view, 8> kActivationNames = {
     "none", "General", "Proportional", "Threshold", "First", "Last", "Highest", "Lowest"};
 constexpr std::array<std::string_view, 6> kComparisonNames = {"<", "<=", "==", "!=", ">=", ">"};
 
-std::vector<std::string_view> words(std::string_view text) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  auto space = [](char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-  };
-  while (i < text.size()) {
-    while (i < text.size() && space(text[i])) ++i;
-    std::size_t j = i;
-    while (j < text.size() && !space(text[j])) ++j;
-    if (j > i) out.push_back(text.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
+// Rule text splits into words on any white space.
+constexpr std::string_view kWordSeparators = " \t\n\r\v\f";
 
 // In an antecedent, which goes through the formula language's infix-to-postfix conversion, a
 // name that is also a function or operator of that language ("max", "and") is parenthesised
@@ -80,9 +80,15 @@ bool has_term(const Engine& engine, const Proposition& p) {
 
 }  // namespace
 
-std::string_view name(TNorm norm) { return kTNormNames.at(static_cast<std::size_t>(norm)); }
-std::string_view name(SNorm norm) { return kSNormNames.at(static_cast<std::size_t>(norm)); }
-std::string_view name(Hedge hedge) { return kHedgeNames.at(static_cast<std::size_t>(hedge)); }
+std::string_view name(TNorm norm) {
+  return kTNormNames.at(static_cast<std::size_t>(norm));
+}
+std::string_view name(SNorm norm) {
+  return kSNormNames.at(static_cast<std::size_t>(norm));
+}
+std::string_view name(Hedge hedge) {
+  return kHedgeNames.at(static_cast<std::size_t>(hedge));
+}
 std::optional<TNorm> tnorm_from_name(std::string_view text) {
   return lookup<TNorm>(kTNormNames, text);
 }
@@ -113,8 +119,7 @@ std::optional<Activation::Comparison> comparison_from_name(std::string_view text
 
 std::string_view name(EngineType type) {
   static constexpr std::array<std::string_view, 7> kNames = {
-      "Unknown", "Mamdani", "Larsen", "Takagi-Sugeno", "Tsukamoto", "Inverse Tsukamoto",
-      "Hybrid"};
+      "Unknown", "Mamdani", "Larsen", "Takagi-Sugeno", "Tsukamoto", "Inverse Tsukamoto", "Hybrid"};
   return kNames.at(static_cast<std::size_t>(type));
 }
 
@@ -145,17 +150,11 @@ bool Activation::operator==(const Activation& other) const {
 }
 
 const Term* InputVariable::find_term(std::string_view term_name) const {
-  for (const Term& t : terms) {
-    if (t.name == term_name) return &t;
-  }
-  return nullptr;
+  return find_named(terms, term_name);
 }
 
 const Term* OutputVariable::find_term(std::string_view term_name) const {
-  for (const Term& t : terms) {
-    if (t.name == term_name) return &t;
-  }
-  return nullptr;
+  return find_named(terms, term_name);
 }
 
 bool InputVariable::operator==(const InputVariable& other) const {
@@ -210,17 +209,11 @@ std::string Rule::text() const {
 }
 
 const InputVariable* Engine::find_input(std::string_view variable_name) const {
-  for (const InputVariable& v : inputs) {
-    if (v.name == variable_name) return &v;
-  }
-  return nullptr;
+  return find_named(inputs, variable_name);
 }
 
 const OutputVariable* Engine::find_output(std::string_view variable_name) const {
-  for (const OutputVariable& v : outputs) {
-    if (v.name == variable_name) return &v;
-  }
-  return nullptr;
+  return find_named(outputs, variable_name);
 }
 
 EngineType Engine::type() const {
@@ -231,7 +224,8 @@ EngineType Engine::type() const {
   }
   if (mamdani) {
     bool larsen = !rule_blocks.empty();
-    for (const RuleBlock& b : rule_blocks) larsen = larsen && b.implication == TNorm::AlgebraicProduct;
+    for (const RuleBlock& b : rule_blocks)
+      larsen = larsen && b.implication == TNorm::AlgebraicProduct;
     return larsen ? EngineType::Larsen : EngineType::Mamdani;
   }
   auto weighted_all = [this](Defuzzifier::WeightedType wanted, auto term_ok) {
@@ -297,12 +291,14 @@ std::vector<std::string> Engine::problems() const {
       }
     }
   };
-  for (const InputVariable& v : inputs) check_terms(v.name, v.terms);
-  for (const OutputVariable& v : outputs) check_terms(v.name, v.terms);
+  for (const InputVariable& v : inputs)
+    check_terms(v.name, v.terms);
+  for (const OutputVariable& v : outputs)
+    check_terms(v.name, v.terms);
   for (std::size_t b = 0; b < rule_blocks.size(); ++b) {
     const RuleBlock& block = rule_blocks[b];
-    const std::string where = "rule block " + std::to_string(b + 1) +
-                              (block.name.empty() ? "" : " '" + block.name + "'");
+    const std::string where =
+        "rule block " + std::to_string(b + 1) + (block.name.empty() ? "" : " '" + block.name + "'");
     bool needs_conjunction = false;
     bool needs_disjunction = false;
     bool needs_implication = false;
@@ -355,7 +351,7 @@ Rule parse_rule(std::string_view text, const Engine& engine) {
   std::string antecedent_text;
   std::vector<std::string_view> consequent_words;
   Rule rule;
-  for (std::string_view word : words(body)) {
+  for (std::string_view word : split_words(body, kWordSeparators)) {
     switch (state) {
       case State::None:
         if (word != "if") {
@@ -398,7 +394,7 @@ Rule parse_rule(std::string_view text, const Engine& engine) {
   if (state == State::With) {
     throw std::invalid_argument("rule " + quoted + " has 'with' but no weight");
   }
-  if (words(antecedent_text).empty()) {
+  if (split_words(antecedent_text, kWordSeparators).empty()) {
     throw std::invalid_argument("rule " + quoted + " has nothing between 'if' and 'then'");
   }
 

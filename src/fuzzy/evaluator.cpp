@@ -164,6 +164,41 @@ double disjoin(SNorm norm, double a, double b) {
   return norm == SNorm::Maximum ? nan_max(a, b) : apply(norm, a, b);
 }
 
+// Hedges apply last to first: "very not x" is very(not(x)).
+double apply_hedges(const Hedge* hedges, std::uint32_t count, double value) {
+  while (count > 0)
+    value = apply(hedges[--count], value);
+  return value;
+}
+
+// For i in [first, last): visit(i, max(mu[i], implication(y[i], degree))), with Minimum
+// implication or else AlgebraicProduct, as selects the compiler vectorises. The caller makes sure
+// they equal fuzzylite's operators: when b is not NaN, nan_min(a, b) is a < b ? a : b and
+// nan_max(a, b) is a > b ? a : b.
+template <class Visit>
+[[gnu::always_inline]] inline void max_with_implied(TNorm implication, const double* y,
+                                                    double degree, const double* mu,
+                                                    std::size_t first, std::size_t last,
+                                                    Visit visit) {
+  if (implication == TNorm::Minimum) {
+    for (std::size_t i = first; i < last; ++i) {
+      const double implied = y[i] < degree ? y[i] : degree;
+      visit(i, mu[i] > implied ? mu[i] : implied);
+    }
+  } else {
+    for (std::size_t i = first; i < last; ++i) {
+      const double implied = y[i] * degree;
+      visit(i, mu[i] > implied ? mu[i] : implied);
+    }
+  }
+}
+
+// Zeroes mu[0, n) outside [first, last) (first <= last, so an empty range zeroes everything).
+void zero_outside(double* mu, std::size_t first, std::size_t last, std::size_t n) {
+  std::fill(mu, mu + first, 0.0);
+  std::fill(mu + last, mu + n, 0.0);
+}
+
 bool all_finite(const double* values, std::size_t n) {
   bool finite = true;
   for (std::size_t i = 0; i < n; ++i)
@@ -373,12 +408,12 @@ Evaluator::Evaluator(const Engine& engine) {
       o.eager = o.eager && !(p.output && p.variable == i);
     }
   }
-  sample_grids(kMaxGridValues);
+  sample_grids();
 }
 
 // The positions an integral defuzzifier samples, and the membership there of every output term
 // that depends on x alone: the same expressions as fuzzylite's sample loops, computed once.
-void Evaluator::sample_grids(std::size_t max_grid_values) {
+void Evaluator::sample_grids() {
   for (CompiledOutput& o : outputs_) {
     if (!o.defuzzifier.is_integral() || !std::isfinite(o.minimum + o.maximum)) continue;
     const int resolution = o.defuzzifier.resolution;
@@ -405,7 +440,7 @@ void Evaluator::sample_grids(std::size_t max_grid_values) {
           reads_variables |= b != kX;
         }
       }
-      if (reads_variables || grid_values_.size() + o.grid_size > max_grid_values) continue;
+      if (reads_variables || grid_values_.size() + o.grid_size > kMaxGridValues) continue;
       term.grid_values = static_cast<std::int32_t>(grid_values_.size());
       for (std::uint32_t i = 0; i < o.grid_size; ++i) {
         grid_values_.push_back(membership(term, x[i], scratch));
@@ -461,10 +496,10 @@ Workspace Evaluator::make_workspace() const {
   return result;
 }
 
-// The common linear shapes inline, every other through membership().
+// The common linear shapes inline, every other through general_membership().
 [[gnu::always_inline]] inline double Evaluator::fuzzify(const CompiledTerm& t, double x,
                                                         Workspace& w) const {
-  if (t.parameters_not_nan) {
+  if (t.parameters_not_nan) {  // else the templated shapes, NaN parameters and all
     const double* p = parameters_.data() + t.parameters;
     switch (t.kind) {
       case TermKind::Triangle:
@@ -477,24 +512,16 @@ Workspace Evaluator::make_workspace() const {
         break;
     }
   }
-  return membership(t, x, w);
+  return general_membership(t, x, w);
 }
 
 double Evaluator::membership(const CompiledTerm& t, double x, Workspace& w) const {
+  return fuzzify(t, x, w);
+}
+
+double Evaluator::general_membership(const CompiledTerm& t, double x, Workspace& w) const {
   const double* p = parameters_.data() + t.parameters;
   const double h = t.height;
-  if (t.parameters_not_nan) {  // else the templated shapes below, NaN parameters and all
-    switch (t.kind) {
-      case TermKind::Triangle:
-        return triangle(x, p, h);
-      case TermKind::Trapezoid:
-        return trapezoid(x, p, h);
-      case TermKind::Ramp:
-        return ramp(x, p, h);
-      default:
-        break;
-    }
-  }
   switch (t.kind) {
     case TermKind::Bell:
       return shapes::bell(x, p[0], p[1], p[2], h);
@@ -606,9 +633,7 @@ double Evaluator::proposition(const CompiledProposition& p, Workspace& w) const 
   } else {
     result = w.proposition_values_[static_cast<std::size_t>(p.term)];
   }
-  while (count > 0)
-    result = apply(hedges[--count], result);
-  return result;
+  return apply_hedges(hedges, count, result);
 }
 
 double Evaluator::antecedent(const CompiledRule& rule, const CompiledBlock& block,
@@ -656,9 +681,7 @@ double Evaluator::antecedent(const CompiledRule& rule, const CompiledBlock& bloc
 
 // Hedges of a conclusion, last to first; rare, so kept out of the rule loops.
 [[gnu::noinline]] double Evaluator::hedge(const CompiledProposition& p, double degree) const {
-  for (std::uint32_t h = p.hedge_count; h > 0; --h)
-    degree = apply(hedges_[p.hedges + h - 1], degree);
-  return degree;
+  return apply_hedges(hedges_.data() + p.hedges, p.hedge_count, degree);
 }
 
 // Adds the rule's conclusions with the activation degree (fuzzylite's Rule::trigger): to the
@@ -811,23 +834,12 @@ Evaluator::Aggregate Evaluator::aggregate(const CompiledOutput& o, bool defer_la
       }
       const double* y = grid_values_.data() + t.grid_values;
       if (defer_last && k + 1 == count) return {first, last, y, degree, implication};
-      if (implication == TNorm::Minimum) {
-        for (std::size_t i = term_first; i < term_last; ++i) {
-          const double implied = y[i] < degree ? y[i] : degree;
-          mu[i] = mu[i] > implied ? mu[i] : implied;
-        }
-      } else {
-        for (std::size_t i = term_first; i < term_last; ++i) {
-          const double implied = y[i] * degree;
-          mu[i] = mu[i] > implied ? mu[i] : implied;
-        }
-      }
+      max_with_implied(implication, y, degree, mu, term_first, term_last,
+                       [mu](std::size_t i, double aggregated) { mu[i] = aggregated; });
       continue;
     }
     if (sparse) {  // from here on, every sample
-      std::fill(mu, mu + first, 0.0);
-      std::fill(mu + last, mu + n, 0.0);
-      if (first == last) std::fill(mu, mu + n, 0.0);
+      zero_outside(mu, first, last, n);
       first = 0;
       last = n;
       sparse = false;
@@ -842,20 +854,12 @@ Evaluator::Aggregate Evaluator::aggregate(const CompiledOutput& o, bool defer_la
       y = sampled;
       y_finite = false;
     }
-    // Selects the compiler vectorises: when b is not NaN, nan_min(a, b) is a < b ? a : b and
-    // nan_max(a, b) is a > b ? a : b. Minimum with a degree that is not NaN, or the product of
-    // finite values, never gives NaN.
-    if (implication == TNorm::Minimum && o.aggregation == SNorm::Maximum && !std::isnan(degree)) {
-      for (std::size_t i = 0; i < n; ++i) {
-        const double implied = y[i] < degree ? y[i] : degree;
-        mu[i] = mu[i] > implied ? mu[i] : implied;
-      }
-    } else if (implication == TNorm::AlgebraicProduct && o.aggregation == SNorm::Maximum &&
-               y_finite && std::isfinite(degree)) {
-      for (std::size_t i = 0; i < n; ++i) {
-        const double implied = y[i] * degree;
-        mu[i] = mu[i] > implied ? mu[i] : implied;
-      }
+    // Minimum with a degree that is not NaN, or the product of finite values, never gives NaN.
+    if (o.aggregation == SNorm::Maximum &&
+        ((implication == TNorm::Minimum && !std::isnan(degree)) ||
+         (implication == TNorm::AlgebraicProduct && y_finite && std::isfinite(degree)))) {
+      max_with_implied(implication, y, degree, mu, 0, n,
+                       [mu](std::size_t i, double aggregated) { mu[i] = aggregated; });
     } else {
       imply(implication, y, degree, n, w.implied_.data());
       accumulate(o.aggregation, w.implied_.data(), n, mu);
@@ -871,11 +875,7 @@ double Evaluator::integral(const CompiledOutput& o, Workspace& w) const {
   double* mu = w.samples_.data();
   const double* x = grid_x_.data() + o.grid;
   const int resolution = o.defuzzifier.resolution;
-  if (!centroid) {  // they read every sample
-    std::fill(mu, mu + nonzero.first, 0.0);
-    std::fill(mu + nonzero.last, mu + o.grid_size, 0.0);
-    if (nonzero.first == nonzero.last) std::fill(mu, mu + o.grid_size, 0.0);
-  }
+  if (!centroid) zero_outside(mu, nonzero.first, nonzero.last, o.grid_size);  // read every sample
   switch (o.defuzzifier.kind) {
     case Defuzzifier::Kind::Bisector: {
       // Samples from both ends towards the middle: the right end has its own grid.
@@ -911,23 +911,11 @@ double Evaluator::integral(const CompiledOutput& o, Workspace& w) const {
       double x_centroid = 0.0;
       if (nonzero.deferred != nullptr) {
         // The last term's implication and aggregation fill the wait on the sums' additions.
-        const double* y = nonzero.deferred;
-        const double degree = nonzero.deferred_degree;
-        if (nonzero.deferred_implication == TNorm::Minimum) {
-          for (std::size_t i = first; i < last; ++i) {
-            const double implied = y[i] < degree ? y[i] : degree;
-            const double aggregated = mu[i] > implied ? mu[i] : implied;
-            x_centroid += aggregated * x[i];
-            area += aggregated;
-          }
-        } else {
-          for (std::size_t i = first; i < last; ++i) {
-            const double implied = y[i] * degree;
-            const double aggregated = mu[i] > implied ? mu[i] : implied;
-            x_centroid += aggregated * x[i];
-            area += aggregated;
-          }
-        }
+        max_with_implied(nonzero.deferred_implication, nonzero.deferred, nonzero.deferred_degree,
+                         mu, first, last, [&](std::size_t i, double aggregated) {
+                           x_centroid += aggregated * x[i];
+                           area += aggregated;
+                         });
         return x_centroid / area;
       }
       while (first < last && mu[first] == 0.0)
@@ -1057,17 +1045,7 @@ void Evaluator::evaluate(std::span<const double> inputs, std::span<double> outpu
   }
   std::size_t slot = terms_.size();
   for (std::uint32_t index : hedged_propositions_) {
-    const CompiledProposition& p = propositions_[index];
-    const Hedge* hedges = hedges_.data() + p.hedges;
-    double value;
-    if (p.variable_enabled && hedges[p.hedge_count - 1] != Hedge::Any) {  // proposition() inline
-      value = w.proposition_values_[static_cast<std::size_t>(p.term)];
-      for (std::uint32_t h = p.hedge_count; h > 0; --h)
-        value = apply(hedges[h - 1], value);
-    } else {
-      value = proposition(p, w);
-    }
-    w.proposition_values_[slot++] = value;
+    values[slot++] = proposition(propositions_[index], w);
   }
   for (const CompiledBlock& block : blocks_) {
     if (!block.enabled) continue;

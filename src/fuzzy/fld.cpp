@@ -8,26 +8,9 @@
 
 #include "fuzzygait/fuzzy/fll.hpp"
 #include "fuzzygait/fuzzy/term.hpp"
+#include "text.hpp"
 
 namespace fuzzygait::fuzzy {
-namespace {
-
-std::vector<std::string_view> words(std::string_view text) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == ','; };
-  while (i < text.size()) {
-    while (i < text.size() && blank(text[i])) ++i;
-    std::size_t j = i;
-    while (j < text.size() && !blank(text[j])) ++j;
-    if (j > i) out.push_back(text.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
-
-}  // namespace
-
 int Table::column(std::string_view name) const {
   for (std::size_t i = 0; i < columns.size(); ++i) {
     if (columns[i] == name) return static_cast<int>(i);
@@ -46,14 +29,16 @@ Table read_fld(std::string_view text, std::string_view source) {
     const std::string_view line = text.substr(start, end - start);
     start = end + 1;
     ++number;
-    const std::vector<std::string_view> cells = words(line);
+    const std::vector<std::string_view> cells = split_words(line, " \t\r,");
     if (cells.empty() || cells.front().front() == '#') continue;
     if (!header_seen) {
       header_seen = true;
       bool numeric = true;
-      for (std::string_view c : cells) numeric = numeric && parse_scalar(c).has_value();
+      for (std::string_view c : cells)
+        numeric = numeric && parse_scalar(c).has_value();
       if (!numeric) {
-        for (std::string_view c : cells) table.columns.emplace_back(c);
+        for (std::string_view c : cells)
+          table.columns.emplace_back(c);
         continue;
       }
       table.columns.assign(cells.size(), std::string());  // no header: columns by position

@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "fuzzygait/fuzzy/formula.hpp"
+#include "text.hpp"
 
 namespace fuzzygait::fuzzy {
 namespace {
@@ -19,18 +20,8 @@ std::string_view trim(std::string_view text) {
   return text.substr(first, last - first + 1);
 }
 
-std::vector<std::string_view> words(std::string_view text) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
-    std::size_t j = i;
-    while (j < text.size() && text[j] != ' ' && text[j] != '\t') ++j;
-    if (j > i) out.push_back(text.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
+// Values split into words on spaces and tabs.
+constexpr std::string_view kWordSeparators = " \t";
 
 bool valid_name(std::string_view name) {
   if (name.empty()) return false;
@@ -88,8 +79,8 @@ class Reader {
         process(block);
         block.clear();
       } else if (block.empty()) {
-        fail(number, "'" + entry.key +
-                         "' must belong to an InputVariable, OutputVariable or RuleBlock");
+        fail(number,
+             "'" + entry.key + "' must belong to an InputVariable, OutputVariable or RuleBlock");
       }
       block.push_back(std::move(entry));
     }
@@ -123,8 +114,8 @@ class Reader {
 
   std::string name(const Entry& e, const std::string& what) const {
     if (!valid_name(e.value)) {
-      fail(e.line, what + " name '" + e.value +
-                       "' must be letters, digits, '_' or '.', and not empty");
+      fail(e.line,
+           what + " name '" + e.value + "' must be letters, digits, '_' or '.', and not empty");
     }
     // Rules read 'and' and 'or' as connectives, so no rule could name such a variable, and the
     // rule parser would take every connective for it.
@@ -135,13 +126,15 @@ class Reader {
   }
 
   void range(const Entry& e, double& minimum, double& maximum) const {
-    const std::vector<std::string_view> w = words(e.value);
+    const std::vector<std::string_view> w = split_words(e.value, kWordSeparators);
     if (w.size() != 2) fail(e.line, "range must be two numbers 'minimum maximum'");
     minimum = scalar(e, w[0], "range minimum");
     maximum = scalar(e, w[1], "range maximum");
   }
 
-  // Name sets rather than scans of the engine, so that large files read in linear time.
+  // Name sets rather than scans of the engine, so that checking a variable or term name for a
+  // duplicate does not grow with the names before it (rules still find their variables and
+  // terms by scanning the engine).
   void unique_variable(const Entry& e, const std::string& variable) {
     if (!variable_names_.insert(variable).second) {
       fail(e.line, "variable '" + variable + "' is defined twice");
@@ -150,7 +143,7 @@ class Reader {
 
   Term term(const Entry& e, std::unordered_set<std::string>& existing,
             const std::string& variable) const {
-    const std::vector<std::string_view> w = words(e.value);
+    const std::vector<std::string_view> w = split_words(e.value, kWordSeparators);
     if (w.size() < 2) fail(e.line, "a term needs 'name Shape parameters', found '" + e.value + "'");
     const std::string term_name(w[0]);
     if (!valid_name(term_name)) {
@@ -161,8 +154,8 @@ class Reader {
     }
     const std::optional<TermKind> kind = term_kind_from_name(w[1]);
     if (!kind) fail(e.line, "unknown term shape '" + std::string(w[1]) + "'");
-    const std::size_t rest = w.size() > 2 ? static_cast<std::size_t>(w[2].data() - e.value.data())
-                                          : e.value.size();
+    const std::size_t rest =
+        w.size() > 2 ? static_cast<std::size_t>(w[2].data() - e.value.data()) : e.value.size();
     try {
       return make_term(term_name, *kind, std::string_view(e.value).substr(rest));
     } catch (const std::invalid_argument& error) {
@@ -182,6 +175,25 @@ class Reader {
     }
   }
 
+  // The keys input and output variables share; false for any other key.
+  template <class Variable>
+  bool variable_key(const Entry& e, Variable& v, std::unordered_set<std::string>& term_names) {
+    if (e.key == "description") {
+      v.description = e.value;
+    } else if (e.key == "enabled") {
+      v.enabled = boolean(e);
+    } else if (e.key == "range") {
+      range(e, v.minimum, v.maximum);
+    } else if (e.key == "lock-range") {
+      v.lock_range = boolean(e);
+    } else if (e.key == "term") {
+      v.terms.push_back(term(e, term_names, v.name));
+    } else {
+      return false;
+    }
+    return true;
+  }
+
   void input(const std::vector<Entry>& block) {
     InputVariable v;
     std::unordered_set<std::string> term_names;
@@ -189,17 +201,7 @@ class Reader {
     unique_variable(block.front(), v.name);
     for (std::size_t i = 1; i < block.size(); ++i) {
       const Entry& e = block[i];
-      if (e.key == "description") {
-        v.description = e.value;
-      } else if (e.key == "enabled") {
-        v.enabled = boolean(e);
-      } else if (e.key == "range") {
-        range(e, v.minimum, v.maximum);
-      } else if (e.key == "lock-range") {
-        v.lock_range = boolean(e);
-      } else if (e.key == "term") {
-        v.terms.push_back(term(e, term_names, v.name));
-      } else {
+      if (!variable_key(e, v, term_names)) {
         fail(e.line, "unknown key '" + e.key + "' in InputVariable '" + v.name + "'");
       }
     }
@@ -213,15 +215,8 @@ class Reader {
     unique_variable(block.front(), v.name);
     for (std::size_t i = 1; i < block.size(); ++i) {
       const Entry& e = block[i];
-      if (e.key == "description") {
-        v.description = e.value;
-      } else if (e.key == "enabled") {
-        v.enabled = boolean(e);
-      } else if (e.key == "range") {
-        range(e, v.minimum, v.maximum);
-      } else if (e.key == "lock-range") {
-        v.lock_range = boolean(e);
-      } else if (e.key == "default") {
+      if (variable_key(e, v, term_names)) continue;
+      if (e.key == "default") {
         v.default_value = scalar(e, e.value, "default");
       } else if (e.key == "lock-previous" || e.key == "lock-valid") {
         v.lock_previous = boolean(e);
@@ -231,8 +226,6 @@ class Reader {
         v.aggregation = *s;
       } else if (e.key == "defuzzifier") {
         v.defuzzifier = defuzzifier(e);
-      } else if (e.key == "term") {
-        v.terms.push_back(term(e, term_names, v.name));
       } else {
         fail(e.line, "unknown key '" + e.key + "' in OutputVariable '" + v.name + "'");
       }
@@ -241,7 +234,7 @@ class Reader {
   }
 
   std::optional<Defuzzifier> defuzzifier(const Entry& e) const {
-    const std::vector<std::string_view> w = words(e.value);
+    const std::vector<std::string_view> w = split_words(e.value, kWordSeparators);
     if (w.empty()) fail(e.line, "defuzzifier is empty (write 'none' for no defuzzifier)");
     if (w[0] == "none" && w.size() == 1) return std::nullopt;
     const std::optional<Defuzzifier::Kind> kind = defuzzifier_from_name(w[0]);
@@ -260,8 +253,10 @@ class Reader {
       } else {
         const std::optional<Defuzzifier::WeightedType> type = weighted_type_from_name(w[1]);
         if (!type) {
-          fail(e.line, "weighted defuzzifier type must be Automatic, TakagiSugeno or "
-                       "Tsukamoto, found '" + std::string(w[1]) + "'");
+          fail(e.line,
+               "weighted defuzzifier type must be Automatic, TakagiSugeno or "
+               "Tsukamoto, found '" +
+                   std::string(w[1]) + "'");
         }
         d.type = *type;
       }
@@ -270,7 +265,7 @@ class Reader {
   }
 
   Activation activation(const Entry& e) const {
-    const std::vector<std::string_view> w = words(e.value);
+    const std::vector<std::string_view> w = split_words(e.value, kWordSeparators);
     if (w.empty()) fail(e.line, "activation is empty (write 'General' or 'none')");
     const std::optional<Activation::Kind> kind = activation_from_name(w[0]);
     if (!kind) fail(e.line, "unknown activation method '" + std::string(w[0]) + "'");
@@ -363,7 +358,8 @@ class Reader {
 
 void check_line(const std::string& text, const std::string& what) {
   if (text.find_first_of("#\n\r") != std::string::npos) {
-    throw std::invalid_argument(what + " '" + text + "' cannot be written to FLL: it holds '#' or "
+    throw std::invalid_argument(what + " '" + text +
+                                "' cannot be written to FLL: it holds '#' or "
                                 "a line break");
   }
 }
@@ -392,11 +388,10 @@ std::vector<std::string> formula_reads(const std::string& variable,
 }  // namespace
 
 ParseError::ParseError(std::string source, int line, const std::string& message)
-    : std::runtime_error(source + (line > 0 ? ":" + std::to_string(line) : std::string()) +
-                         ": " + message),
+    : std::runtime_error(source + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
+                         message),
       source_(std::move(source)),
-      line_(line),
-      detail_(message) {}
+      line_(line) {}
 
 Engine read_fll(std::string_view text, std::string_view source) {
   return Reader(source).read(text);
@@ -444,8 +439,7 @@ std::string write_fll(const Engine& engine) {
     terms(v.terms);
   };
   auto output = [&](const OutputVariable& v) {
-    header("OutputVariable", v.name, v.description, v.enabled, v.minimum, v.maximum,
-           v.lock_range);
+    header("OutputVariable", v.name, v.description, v.enabled, v.minimum, v.maximum, v.lock_range);
     out << "  aggregation: " << name(v.aggregation) << "\n";
     out << "  defuzzifier: ";
     if (!v.defuzzifier) {
@@ -480,8 +474,8 @@ std::string write_fll(const Engine& engine) {
     const bool output_ready =
         next_output < engine.outputs.size() &&
         ready(engine.outputs[next_output].name, engine.outputs[next_output].terms);
-    if (inputs_left && (ready(engine.inputs[next_input].name, engine.inputs[next_input].terms) ||
-                        !output_ready)) {
+    if (inputs_left &&
+        (ready(engine.inputs[next_input].name, engine.inputs[next_input].terms) || !output_ready)) {
       input(engine.inputs[next_input]);
       written.push_back(engine.inputs[next_input++].name);
     } else {
@@ -501,7 +495,8 @@ std::string write_fll(const Engine& engine) {
     out << "  disjunction: " << name(b.disjunction) << "\n";
     out << "  implication: " << name(b.implication) << "\n";
     out << "  activation: " << b.activation.text() << "\n";
-    for (const Rule& r : b.rules) out << "  rule: " << r.text() << "\n";
+    for (const Rule& r : b.rules)
+      out << "  rule: " << r.text() << "\n";
   }
   return out.str();
 }

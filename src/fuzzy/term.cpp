@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "fuzzygait/fuzzy/formula.hpp"
+#include "text.hpp"
 
 namespace fuzzygait::fuzzy {
 namespace {
@@ -56,22 +57,12 @@ const std::array<TermShapeInfo, kTermKindCount> kShapes = {{
     {TermKind::ZShape, "ZShape", 2, true, true, Names(kStartEnd)},
 }};
 
-std::vector<std::string_view> split_words(std::string_view text) {
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    while (i < text.size() && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) ++i;
-    std::size_t j = i;
-    while (j < text.size() && text[j] != ' ' && text[j] != '\t' && text[j] != '\r') ++j;
-    if (j > i) words.push_back(text.substr(i, j - i));
-    i = j;
-  }
-  return words;
-}
+// Parameters split on spaces, tabs and carriage returns.
+constexpr std::string_view kParameterSeparators = " \t\r";
 
 std::string join_words(std::string_view text) {
   std::string out;
-  for (std::string_view word : split_words(text)) {
+  for (std::string_view word : split_words(text, kParameterSeparators)) {
     if (!out.empty()) out += ' ';
     out += word;
   }
@@ -80,7 +71,9 @@ std::string join_words(std::string_view text) {
 
 }  // namespace
 
-const TermShapeInfo& shape_info(TermKind kind) { return kShapes.at(static_cast<int>(kind)); }
+const TermShapeInfo& shape_info(TermKind kind) {
+  return kShapes.at(static_cast<int>(kind));
+}
 
 std::optional<TermKind> term_kind_from_name(std::string_view name) {
   for (const TermShapeInfo& info : kShapes) {
@@ -107,14 +100,13 @@ std::optional<double> parse_scalar(std::string_view text) {
   if (digits.empty() || digits.front() == '+') return std::nullopt;
   // std::from_chars also reads "infinity" and "nan(...)": fuzzylite does not, so neither do we.
   for (char c : digits) {
-    const bool ok = (c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '-' ||
-                    c == '+';
+    const bool ok =
+        (c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '-' || c == '+';
     if (!ok) return std::nullopt;
   }
   double value = 0.0;
-  const auto result =
-      std::from_chars(digits.data(), digits.data() + digits.size(), value,
-                      std::chars_format::general);
+  const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value,
+                                      std::chars_format::general);
   if (result.ec != std::errc() || result.ptr != digits.data() + digits.size()) {
     return std::nullopt;
   }
@@ -163,7 +155,7 @@ Term make_term(std::string name, TermKind kind, std::string_view parameter_text)
     return term;
   }
   std::vector<double> values;
-  for (std::string_view word : split_words(parameter_text)) {
+  for (std::string_view word : split_words(parameter_text, kParameterSeparators)) {
     const std::optional<double> value = parse_scalar(word);
     if (!value) {
       throw std::invalid_argument(label + ": parameter " + std::to_string(values.size() + 1) +
@@ -213,8 +205,8 @@ Term make_term(std::string name, TermKind kind, std::string_view parameter_text)
   const auto required = static_cast<std::size_t>(info.parameter_count);
   const std::size_t allowed = required + (info.has_height ? 1 : 0);
   if (values.size() < required || values.size() > allowed) {
-    throw std::invalid_argument(label + ": needs " + std::to_string(required) +
-                                " parameters (" + describe() + ")" +
+    throw std::invalid_argument(label + ": needs " + std::to_string(required) + " parameters (" +
+                                describe() + ")" +
                                 (info.has_height ? " and an optional height" : "") + ", found " +
                                 std::to_string(values.size()));
   }

@@ -171,9 +171,11 @@ std::pair<std::string_view, std::string_view> split_path(std::string_view path) 
 }  // namespace
 
 std::vector<std::string> ControllerSet::builtin_names() {
+  // A set is a folder with a manifest; other compiled-in files (the paper's example) are not.
   std::set<std::string> names;
   for (const detail::EmbeddedFile& f : detail::embedded_files()) {
-    names.emplace(split_path(f.path).first);
+    const auto [folder, file] = split_path(f.path);
+    if (file == "manifest.json") names.emplace(folder);
   }
   return {names.begin(), names.end()};
 }

@@ -11,19 +11,10 @@ namespace {
 
 constexpr double kOnGround = 0.002;  // m: a foot point this close to the ground bears on it
 
-std::vector<std::size_t> rising_edges(const Motion& m, int side, std::size_t min_gap) {
-  std::vector<std::size_t> edges;
-  for (std::size_t i = 1; i < m.frames.size(); ++i) {
-    const bool now = m.frames[i].contact[static_cast<std::size_t>(side)];
-    const bool before = m.frames[i - 1].contact[static_cast<std::size_t>(side)];
-    if (now && !before && (edges.empty() || i - edges.back() >= min_gap)) edges.push_back(i);
-  }
-  return edges;
-}
-
 double mean_of(const std::vector<double>& v) {
   double s = 0.0;
-  for (double x : v) s += x;
+  for (double x : v)
+    s += x;
   return v.empty() ? 0.0 : s / static_cast<double>(v.size());
 }
 
@@ -31,7 +22,8 @@ double sd_of(const std::vector<double>& v) {
   if (v.size() < 2) return 0.0;
   const double m = mean_of(v);
   double s = 0.0;
-  for (double x : v) s += (x - m) * (x - m);
+  for (double x : v)
+    s += (x - m) * (x - m);
   return std::sqrt(s / static_cast<double>(v.size() - 1));
 }
 
@@ -39,10 +31,12 @@ Curve mean_curve(const std::vector<double>& values,
                  const std::vector<std::pair<std::size_t, std::size_t>>& cycles) {
   Curve c;
   std::vector<std::array<double, kCycleSamples>> all;
-  for (const auto& [a, b] : cycles) all.push_back(resample_cycle(values, a, b));
+  for (const auto& [a, b] : cycles)
+    all.push_back(resample_cycle(values, a, b));
   for (int k = 0; k < kCycleSamples; ++k) {
     std::vector<double> at;
-    for (const auto& r : all) at.push_back(r[static_cast<std::size_t>(k)]);
+    for (const auto& r : all)
+      at.push_back(r[static_cast<std::size_t>(k)]);
     c.mean[static_cast<std::size_t>(k)] = mean_of(at);
     c.sd[static_cast<std::size_t>(k)] = sd_of(at);
   }
@@ -81,9 +75,32 @@ JointScore score(const Curve& ours, const Curve& reference) {
   return s;
 }
 
-std::array<const rig::Point*, 3> foot(const rig::LegPoints& p) { return {&p.heel, &p.ball, &p.tip}; }
+std::array<const rig::Point*, 3> foot(const rig::LegPoints& p) {
+  return {&p.heel, &p.ball, &p.tip};
+}
 
 }  // namespace
+
+std::vector<std::size_t> heel_strikes(const Motion& m, rig::Side side) {
+  const auto min_gap = static_cast<std::size_t>(std::max(1.0, 0.35 * m.fps));
+  const auto s = static_cast<std::size_t>(rig::index(side));
+  std::vector<std::size_t> strikes;
+  for (std::size_t i = 1; i < m.frames.size(); ++i) {
+    const bool now = m.frames[i].contact[s];
+    const bool before = m.frames[i - 1].contact[s];
+    if (now && !before && (strikes.empty() || i - strikes.back() >= min_gap)) strikes.push_back(i);
+  }
+  return strikes;
+}
+
+CurvePeak swing_peak(const Curve& knee) {
+  CurvePeak peak;
+  for (int k = kCycleSamples / 2; k < kCycleSamples; ++k) {
+    const double v = knee.mean[static_cast<std::size_t>(k)];
+    if (v > peak.value) peak = {100.0 * k / (kCycleSamples - 1), v};
+  }
+  return peak;
+}
 
 std::array<double, kCycleSamples> resample_cycle(const std::vector<double>& values,
                                                  std::size_t begin, std::size_t end) {
@@ -133,7 +150,8 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
         continue;
       }
       std::size_t j = i;
-      while (j < n && !m.frames[j].contact[s]) ++j;
+      while (j < n && !m.frames[j].contact[s])
+        ++j;
       if (i > 0 && j < n) {  // a complete swing
         for (std::size_t k = i + (j - i) / 5; k < j - (j - i) / 5; ++k) {
           for (const rig::Point* p : foot(m.frames[k].points[s])) {
@@ -146,11 +164,11 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
   }
 
   // Cycles of the left leg, heel strike to heel strike; the first is skipped.
-  const auto min_gap = static_cast<std::size_t>(std::max(1.0, 0.35 * m.fps));
-  const std::vector<std::size_t> left = rising_edges(m, 0, min_gap);
-  const std::vector<std::size_t> right = rising_edges(m, 1, min_gap);
+  const std::vector<std::size_t> left = heel_strikes(m, rig::Side::Left);
+  const std::vector<std::size_t> right = heel_strikes(m, rig::Side::Right);
   std::vector<std::pair<std::size_t, std::size_t>> cycles;
-  for (std::size_t k = 1; k + 1 < left.size(); ++k) cycles.emplace_back(left[k], left[k + 1]);
+  for (std::size_t k = 1; k + 1 < left.size(); ++k)
+    cycles.emplace_back(left[k], left[k + 1]);
   r.cycles = static_cast<int>(cycles.size());
   if (cycles.size() < 2) {
     throw std::invalid_argument("fewer than two complete gait cycles to measure (found " +
@@ -161,7 +179,8 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
   for (const auto& [a, b] : cycles) {
     durations.push_back(static_cast<double>(b - a) * dt);
     std::size_t down = 0;
-    for (std::size_t k = a; k < b; ++k) down += m.frames[k].contact[0] ? 1 : 0;
+    for (std::size_t k = a; k < b; ++k)
+      down += m.frames[k].contact[0] ? 1 : 0;
     stance.push_back(100.0 * static_cast<double>(down) / static_cast<double>(b - a));
   }
   r.cycle_time = mean_of(durations);
@@ -175,8 +194,10 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
 
   // Step lengths between successive heel strikes of alternating feet.
   std::vector<std::pair<std::size_t, int>> strikes;
-  for (std::size_t i : left) strikes.emplace_back(i, 0);
-  for (std::size_t i : right) strikes.emplace_back(i, 1);
+  for (std::size_t i : left)
+    strikes.emplace_back(i, 0);
+  for (std::size_t i : right)
+    strikes.emplace_back(i, 1);
   std::sort(strikes.begin(), strikes.end());
   std::vector<double> steps;
   for (std::size_t k = 1; k < strikes.size(); ++k) {
@@ -211,12 +232,9 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
                             *std::min_element(pelvis.mean.begin(), pelvis.mean.end());
   r.thigh_range = *std::max_element(r.thigh.mean.begin(), r.thigh.mean.end()) -
                   *std::min_element(r.thigh.mean.begin(), r.thigh.mean.end());
-  for (int k = kCycleSamples / 2; k < kCycleSamples; ++k) {
-    if (r.knee.mean[static_cast<std::size_t>(k)] > r.knee_peak) {
-      r.knee_peak = r.knee.mean[static_cast<std::size_t>(k)];
-      r.knee_peak_percent = 2.0 * k;
-    }
-  }
+  const CurvePeak knee_peak = swing_peak(r.knee);
+  r.knee_peak = knee_peak.value;
+  r.knee_peak_percent = knee_peak.percent;
   if (reference) {
     r.thigh_score = score(r.thigh, reference->thigh);
     r.knee_score = score(r.knee, reference->knee);
@@ -246,7 +264,8 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
     }
   }
   std::sort(changes.begin(), changes.end());
-  r.typical_velocity_change = changes[static_cast<std::size_t>(0.99 * static_cast<double>(changes.size() - 1))];
+  r.typical_velocity_change =
+      changes[static_cast<std::size_t>(0.99 * static_cast<double>(changes.size() - 1))];
   return r;
 }
 
@@ -308,13 +327,19 @@ std::string to_json(const GaitReport& r) {
   j["max_velocity_jump_deg_per_s"] = r.max_velocity_jump;
   j["typical_velocity_change_deg_per_s"] = r.typical_velocity_change;
   auto joint = [&](const char* name, const std::optional<JointScore>& s) {
-    if (s) j[name] = {{"rmse_deg", s->rmse}, {"pearson_r", s->pearson}, {"within_2sd_percent", s->within_2sd}};
+    if (s)
+      j[name] = {
+          {"rmse_deg", s->rmse}, {"pearson_r", s->pearson}, {"within_2sd_percent", s->within_2sd}};
   };
   joint("thigh", r.thigh_score);
   joint("knee", r.knee_score);
   joint("ankle", r.ankle_score);
-  auto curve = [](const Curve& c) { return nlohmann::json(std::vector<double>(c.mean.begin(), c.mean.end())); };
-  j["mean_cycle"] = {{"thigh", curve(r.thigh)}, {"knee", curve(r.knee)}, {"ankle", curve(r.ankle)},
+  auto curve = [](const Curve& c) {
+    return nlohmann::json(std::vector<double>(c.mean.begin(), c.mean.end()));
+  };
+  j["mean_cycle"] = {{"thigh", curve(r.thigh)},
+                     {"knee", curve(r.knee)},
+                     {"ankle", curve(r.ankle)},
                      {"toe", curve(r.toe)}};
   return j.dump(2);
 }

@@ -2,13 +2,32 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace fuzzygait::gait {
+namespace {
 
-Motion record(Walker& walker, double duration, double fps) {
+void check_fps(double fps) {
   if (!std::isfinite(fps) || fps < 1.0 || fps > 10000.0) {
     throw std::invalid_argument("fps must be between 1 and 10000");
   }
+}
+
+}  // namespace
+
+Frame capture_frame(const Walker& walker, double time) {
+  Frame f;
+  f.time = time;
+  f.pose = walker.pose();
+  for (rig::Side side : rig::kSides) {
+    f.points[rig::index(side)] = walker.points(side);
+    f.contact[rig::index(side)] = walker.in_contact(side);
+  }
+  return f;
+}
+
+Motion record(Walker& walker, double duration, double fps) {
+  check_fps(fps);
   if (!std::isfinite(duration) || duration < 0.0 || duration > 3600.0) {
     throw std::invalid_argument("duration must be between 0 and 3600 s");
   }
@@ -19,14 +38,31 @@ Motion record(Walker& walker, double duration, double fps) {
   motion.frames.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
     if (i > 0) walker.advance(1.0 / fps);
-    Frame f;
-    f.time = static_cast<double>(i) / fps;
-    f.pose = walker.pose();
-    for (rig::Side side : rig::kSides) {
-      f.points[rig::index(side)] = walker.points(side);
-      f.contact[rig::index(side)] = walker.in_contact(side);
+    motion.frames.push_back(capture_frame(walker, static_cast<double>(i) / fps));
+  }
+  return motion;
+}
+
+Motion record_cycles(Walker& walker, int cycles, double fps) {
+  check_fps(fps);
+  if (cycles < 1) throw std::invalid_argument("cycles must be at least 1");
+  Motion motion;
+  motion.fps = fps;
+  motion.segments = walker.segments();
+  const double limit = 3.0 * (cycles + 2);
+  int left_strikes = 0;
+  for (std::size_t i = 0;; ++i) {
+    if (i > 0) walker.advance(1.0 / fps);
+    for (const EventRecord& e : walker.events()) {
+      if (e.side == rig::Side::Left && e.event == Event::HeelStrike) ++left_strikes;
     }
-    motion.frames.push_back(f);
+    walker.clear_events();
+    motion.frames.push_back(capture_frame(walker, static_cast<double>(i) / fps));
+    if (left_strikes >= cycles + 2) break;
+    if (motion.frames.back().time > limit) {
+      throw std::runtime_error("the walker did not complete " + std::to_string(cycles) +
+                               " cycles in " + std::to_string(limit) + " s");
+    }
   }
   return motion;
 }

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "splitmix64.hpp"
+
 namespace fuzzygait::gait {
 namespace {
 
@@ -160,10 +162,7 @@ bool same_bits(double a, double b) {
 inline LegPoints Walker::leg_points(int leg, Point hip, const LegAngles& angles) {
   const rig::LegOrientation o = rig::orientation(state_.pelvis_tilt, angles);
   LegTrig& t = trig_[static_cast<std::size_t>(leg)];
-  if (!same_bits(o.thigh, t.orientation.thigh) || !same_bits(o.shank, t.orientation.shank) ||
-      !same_bits(o.foot, t.orientation.foot) || !same_bits(o.toes, t.orientation.toes)) {
-    t.update(o);
-  }
+  t.update(o);
   return rig::forward_kinematics(segments_, hip, t.trig);
 }
 
@@ -204,16 +203,14 @@ void Walker::start(const StartPose& start_pose) {
     // Seeds hashed apart first, so nearby seeds do not walk the same sequence.
     std::uint64_t x = (start_pose.seed ^ 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull;
     x = (x ^ (x >> 31)) * 0x94D049BB133111EBull;
-    auto uniform = [&x](double low, double high) {  // splitmix64: the same on every platform
-      x += 0x9E3779B97F4A7C15ull;
-      std::uint64_t z = x;
-      z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-      z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-      z ^= z >> 31;
-      return low + (high - low) * static_cast<double>(z >> 11) * 0x1.0p-53;
+    detail::SplitMix64 random(x);
+    auto uniform = [&random](double low, double high) {
+      return low + (high - low) * random.uniform();
     };
     // Any angles within the joint limits, as long as each foot is the lowest part of its leg
-    // (the feet near the ground, not a kneeling start).
+    // (the feet near the ground, not a kneeling start) and, should it be the foot put down, its
+    // toes can lie on the ground within their limit.
+    const double slope = terrain_->slope(0.0);
     for (int attempt = 0; attempt < 10000; ++attempt) {
       bool feet_lowest = true;
       for (LegState& leg : state_.legs) {
@@ -223,13 +220,15 @@ void Walker::start(const StartPose& start_pose) {
         leg.angles.toe = uniform(limits_.minimum.toe, limits_.maximum.toe);
         const LegPoints p = rig::forward_kinematics(segments_, {0.0, 0.0}, tilt, leg.angles);
         const double foot = std::min({p.heel.y, p.ball.y, p.tip.y});
-        feet_lowest = feet_lowest && foot < p.knee.y - 0.15 && p.ankle.y < p.knee.y;
+        const bool toes_fit = slope - foot_of(tilt, leg.angles) <= limits_.maximum.toe;
+        feet_lowest = feet_lowest && foot < p.knee.y - 0.15 && p.ankle.y < p.knee.y && toes_fit;
       }
       if (feet_lowest) break;
     }
   } else {
-    // Mid stride: the right foot flat under the body, the left leg just off the ground behind
-    // it and already swinging forward (the velocities of a walk at this moment).
+    // Mid stride: the right foot under the body with its heel just lifted (it starts on the
+    // ball of the foot; flat only for the longest steps), the left leg just off the ground
+    // behind it and already swinging forward (the velocities of a walk at this moment).
     right.angles = {rig::radians(8.0 * scale) + tilt, rig::radians(12.0), 0.0, 0.0};
     left.angles = {rig::radians(-14.0 * scale) + tilt, rig::radians(45.0), rig::radians(-12.0),
                    rig::radians(25.0)};
@@ -278,38 +277,40 @@ void Walker::start(const StartPose& start_pose) {
   strike(down, phase,
          phase == Phase::Ball ? Point{p.ball.x, terrain_->height(p.ball.x)}
                               : Point{p.heel.x, terrain_->height(p.heel.x)});
-  if (!start_pose.random) {
+  const int up = 1 - down;
+  if (start_pose.random) {
+    lift_off(up);
+  } else {
     // As if the right heel had struck a step ago and the left toes had just left the ground.
     planted.sweep_start = rig::radians(24.0 * scale);
     planted.strike_x = p.heel.x;
-  }
-  const int up = 1 - down;
-  lift_off(up);
-  if (!start_pose.random) {
+    lift_off(up);
     LegState& swinging = state_.legs[static_cast<std::size_t>(up)];
     swinging.sweep_start = thigh_of(tilt, swinging.angles) + rig::radians(2.0 * scale);
-  }
-  if (!start_pose.random && start_pose.warm_up > 0.0) {
-    // Walk a while on level ground at the start's height, then bring that walk back to x = 0:
-    // the character starts in its own steady gait rather than from a pose it never takes.
-    const terrain::Terrain* ground = terrain_;
-    const terrain::Terrain level =
-        terrain::Terrain::polyline({{-1e6, ground->height(0.0)}, {1e6, ground->height(0.0)}});
-    terrain_ = &level;
-    for (double t = 0.0; t < start_pose.warm_up; t += time_step_)
-      step(time_step_);
-    terrain_ = ground;
-    const double shift = state_.pelvis.x;
-    state_.pelvis.x = 0.0;
-    for (LegState& l : state_.legs) {
-      l.anchor.x -= shift;
-      l.target_x -= shift;
-      l.strike_x -= shift;
-    }
-    state_.time = 0.0;
+    if (start_pose.warm_up > 0.0) warm_up(start_pose.warm_up);
   }
   events_.clear();
   state_.heel_strikes = 0;
+}
+
+// Walks `seconds` on level ground at the start's height, then brings that walk back to x = 0:
+// the character starts in its own steady gait rather than from a pose it never takes.
+void Walker::warm_up(double seconds) {
+  const terrain::Terrain* ground = terrain_;
+  const terrain::Terrain level =
+      terrain::Terrain::polyline({{-1e6, ground->height(0.0)}, {1e6, ground->height(0.0)}});
+  terrain_ = &level;
+  for (double t = 0.0; t < seconds; t += time_step_)
+    step(time_step_);
+  terrain_ = ground;
+  const double shift = state_.pelvis.x;
+  state_.pelvis.x = 0.0;
+  for (LegState& l : state_.legs) {
+    l.anchor.x -= shift;
+    l.target_x -= shift;
+    l.strike_x -= shift;
+  }
+  state_.time = 0.0;
 }
 
 void Walker::strike(int leg, Phase phase, Point contact) {
@@ -358,8 +359,9 @@ void Walker::place_pelvis(int leg) {
   state_.pelvis = {l.anchor.x - c.x, l.anchor.y - c.y};
 }
 
-// Two-link IK of a planted trailing leg: hip and knee put its contact point back on its anchor
-// (the ankle itself while the foot is flat). Returns false when out of reach.
+// Two-link IK of the newly planted leg (the one not carrying the pelvis): hip and knee put its
+// contact point back on its anchor (the ankle itself while the foot is flat). Returns false when
+// out of reach.
 bool Walker::close_chain(int leg) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
   const rig::Segments& s = segments_;
@@ -545,7 +547,8 @@ void Walker::step(double h) {
   metrics[0][other_delta] = metrics[1][delta];
   metrics[1][other_delta] = metrics[0][delta];
 
-  // The same h every step but the last of an uneven frame: exp() once per distinct h.
+  // advance() splits a frame into equal sub-steps, so h changes only with the frame's length:
+  // exp() is recomputed only when h changes.
   if (!(h == follow_step_)) {
     follow_step_ = h;
     follow_ = 1.0 - std::exp(-h / controllers_->inertia);

@@ -3,46 +3,28 @@
 #include <cmath>
 #include <fstream>
 #include <istream>
-#include <map>
 #include <sstream>
 
 #include "builtin_data.hpp"
+#include "csv.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
 #include "fuzzygait/fuzzy/term.hpp"
 
 namespace fuzzygait::io {
-namespace {
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::string cell;
-  for (char c : line) {
-    if (c == ',') {
-      cells.push_back(cell);
-      cell.clear();
-    } else if (c != '\r') {
-      cell += c;
-    }
-  }
-  cells.push_back(cell);
-  return cells;
-}
-
-}  // namespace
-
 gait::Normative read_normative_csv(std::istream& in, std::string_view source) {
   const std::string where(source);
   std::string line;
   if (!std::getline(in, line)) throw fuzzy::ParseError(where, 1, "the file is empty");
-  const std::vector<std::string> header = split(line);
-  const char* wanted[] = {"percent",   "hip_mean",   "hip_sd",           "knee_mean",
-                          "knee_sd",   "ankle_mean", "ankle_sd",         "pelvis_tilt_mean",
-                          "pelvis_tilt_sd"};
+  const std::vector<std::string> header = detail::split_csv_line(line);
+  const char* wanted[] = {"percent",    "hip_mean", "hip_sd",           "knee_mean",     "knee_sd",
+                          "ankle_mean", "ankle_sd", "pelvis_tilt_mean", "pelvis_tilt_sd"};
   std::vector<std::size_t> column;
   for (const char* w : wanted) {
     std::size_t c = 0;
-    while (c < header.size() && header[c] != w) ++c;
-    if (c == header.size()) throw fuzzy::ParseError(where, 1, std::string("missing column '") + w + "'");
+    while (c < header.size() && header[c] != w)
+      ++c;
+    if (c == header.size())
+      throw fuzzy::ParseError(where, 1, std::string("missing column '") + w + "'");
     column.push_back(c);
   }
   std::vector<std::array<double, 9>> rows;
@@ -50,14 +32,14 @@ gait::Normative read_normative_csv(std::istream& in, std::string_view source) {
   while (std::getline(in, line)) {
     ++number;
     if (line.empty() || line == "\r") continue;
-    const std::vector<std::string> cells = split(line);
+    const std::vector<std::string> cells = detail::split_csv_line(line);
     std::array<double, 9> row{};
     for (std::size_t k = 0; k < column.size(); ++k) {
       const std::optional<double> v =
           column[k] < cells.size() ? fuzzy::parse_scalar(cells[column[k]]) : std::nullopt;
       if (!v || !std::isfinite(*v)) {
-        throw fuzzy::ParseError(where, number, std::string("column '") + wanted[k] +
-                                                   "' is not a finite number");
+        throw fuzzy::ParseError(where, number,
+                                std::string("column '") + wanted[k] + "' is not a finite number");
       }
       row[k] = *v;
     }
@@ -72,7 +54,8 @@ gait::Normative read_normative_csv(std::istream& in, std::string_view source) {
   // Resample onto 0, 2, ..., 100 percent.
   auto at = [&rows](std::size_t k, double percent) {
     std::size_t i = 0;
-    while (i + 2 < rows.size() && rows[i + 1][0] < percent) ++i;
+    while (i + 2 < rows.size() && rows[i + 1][0] < percent)
+      ++i;
     const double t = (percent - rows[i][0]) / (rows[i + 1][0] - rows[i][0]);
     return rows[i][k] + std::clamp(t, 0.0, 1.0) * (rows[i + 1][k] - rows[i][k]);
   };
@@ -127,7 +110,8 @@ gait::Normative load_normative(std::string_view name_or_path) {
   std::ifstream in{std::string(name_or_path)};
   if (!in) {
     std::string known;
-    for (const std::string& n : builtin_normative_names()) known += (known.empty() ? "" : ", ") + n;
+    for (const std::string& n : builtin_normative_names())
+      known += (known.empty() ? "" : ", ") + n;
     throw std::invalid_argument("'" + std::string(name_or_path) +
                                 "' is neither a built-in reference (" + known +
                                 ") nor a readable file");

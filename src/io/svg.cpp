@@ -943,6 +943,30 @@ class PanelPainter {
     return out;
   }
 
+  // An unfilled 1 px path: grid lines, axes, the colour bar's frame.
+  void stroke_path(const std::string& d, Color color) {
+    out_ += Tag("path")
+                .set("d", d)
+                .set("fill", "none")
+                .set("stroke", color.hex())
+                .set("stroke-width", 1.0)
+                .empty();
+  }
+
+  // A caption turned to read bottom to top, centred on the plot area's height at `x`: the y
+  // axis label, the colour bar's label.
+  void vertical_caption(double x, std::string_view text) {
+    const Box& plot = layout_.plot;
+    const double y = plot.top + plot.height / 2;
+    Tag tag("text");
+    tag.set("transform", "translate(" + px(x) + "," + px(y) + ") rotate(-90)")
+        .set("y", 0.35 * kAxisFont)
+        .set("font-size", kAxisFont)
+        .set("text-anchor", "middle")
+        .set("fill", kInk.hex());
+    out_ += tag.open() + escape_xml(fit_text(text, kAxisFont, plot.height)) + "</text>\n";
+  }
+
   // A group inside the clip whose translation plays the view's shifts: the clip stays on the
   // plot area while the contents move under it.
   void open_moving_view() {
@@ -980,12 +1004,7 @@ class PanelPainter {
       d += "M" + px(layout_.plot.left) + "," + px(y) + "H" + px(layout_.plot.right());
     }
     if (d.empty()) return;
-    out_ += Tag("path")
-                .set("d", d)
-                .set("fill", "none")
-                .set("stroke", kGridLine.hex())
-                .set("stroke-width", 1.0)
-                .empty();
+    stroke_path(d, kGridLine);
   }
 
   void axes() {
@@ -998,12 +1017,7 @@ class PanelPainter {
     for (const double t : layout_.y.ticks) {
       d += "M" + px(plot.left) + "," + px(to_pixel({0, t}).y) + "h" + px(-kTickLength);
     }
-    out_ += Tag("path")
-                .set("d", d)
-                .set("fill", "none")
-                .set("stroke", kAxis.hex())
-                .set("stroke-width", 1.0)
-                .empty();
+    stroke_path(d, kAxis);
     const TextStyle tick_style{.size = kTickFont, .color = kMutedInk};
     for (const double t : layout_.x.ticks) {
       out_ += text_element(to_pixel({t, 0}).x, plot.bottom() + kTickLength + 4 + kTickFont / 2,
@@ -1036,16 +1050,7 @@ class PanelPainter {
                        fit_text(panel_.x_label, kAxisFont, plot.width), {.size = kAxisFont}, false);
     }
     if (!panel_.y_label.empty()) {
-      const double x = layout_.cell.left + 10 + kAxisFont / 2;
-      const double y = plot.top + plot.height / 2;
-      Tag tag("text");
-      tag.set("transform", "translate(" + px(x) + "," + px(y) + ") rotate(-90)")
-          .set("y", 0.35 * kAxisFont)
-          .set("font-size", kAxisFont)
-          .set("text-anchor", "middle")
-          .set("fill", kInk.hex());
-      out_ +=
-          tag.open() + escape_xml(fit_text(panel_.y_label, kAxisFont, plot.height)) + "</text>\n";
+      vertical_caption(layout_.cell.left + 10 + kAxisFont / 2, panel_.y_label);
     }
   }
 
@@ -1369,28 +1374,14 @@ class PanelPainter {
     for (const double t : scale.ticks) {
       d += "M" + px(left + kColorBarWidth) + "," + px(bar_y(t)) + "h" + px(kTickLength);
     }
-    out_ += Tag("path")
-                .set("d", d)
-                .set("fill", "none")
-                .set("stroke", kAxis.hex())
-                .set("stroke-width", 1.0)
-                .empty();
+    stroke_path(d, kAxis);
     TextStyle style{.size = kTickFont, .color = kMutedInk, .anchor = Anchor::Start};
     const double label_x = left + kColorBarWidth + kTickLength + 3;
     for (const double t : scale.ticks) {
       out_ += text_element(label_x, bar_y(t), tick_text(t, scale.decimals), style, false);
     }
     if (!heat.value_label.empty()) {
-      const double x = label_x + widest_tick(scale) + 6 + kAxisFont / 2;
-      const double y = plot.top + plot.height / 2;
-      Tag tag("text");
-      tag.set("transform", "translate(" + px(x) + "," + px(y) + ") rotate(-90)")
-          .set("y", 0.35 * kAxisFont)
-          .set("font-size", kAxisFont)
-          .set("text-anchor", "middle")
-          .set("fill", kInk.hex());
-      out_ +=
-          tag.open() + escape_xml(fit_text(heat.value_label, kAxisFont, plot.height)) + "</text>\n";
+      vertical_caption(label_x + widest_tick(scale) + 6 + kAxisFont / 2, heat.value_label);
     }
   }
 
@@ -1666,10 +1657,6 @@ Panel::~Panel() = default;
 Color Panel::take_color(const std::optional<Color>& wanted) {
   if (wanted) return *wanted;
   return palette_color(data_->colors_used++);
-}
-
-Color Panel::next_color() const {
-  return palette_color(data_->colors_used);
 }
 
 Panel& Panel::title(std::string text) {

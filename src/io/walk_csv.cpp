@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "csv.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
 #include "fuzzygait/fuzzy/term.hpp"
 
@@ -20,7 +21,8 @@ constexpr const char* kSidePrefix[] = {"l", "r"};
 std::vector<std::string> header() {
   std::vector<std::string> h = {"time", "pelvis_x", "pelvis_y", "pelvis_tilt"};
   for (const char* s : kSidePrefix) {
-    for (const char* j : {"hip", "knee", "ankle", "toe"}) h.push_back(std::string(s) + "_" + j);
+    for (const char* j : {"hip", "knee", "ankle", "toe"})
+      h.push_back(std::string(s) + "_" + j);
   }
   h.push_back("l_contact");
   h.push_back("r_contact");
@@ -44,26 +46,12 @@ void append(std::string& line, double value, int decimals) {
   line += buffer;
 }
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::string cell;
-  for (char c : line) {
-    if (c == ',') {
-      cells.push_back(cell);
-      cell.clear();
-    } else if (c != '\r') {
-      cell += c;
-    }
-  }
-  cells.push_back(cell);
-  return cells;
-}
-
 }  // namespace
 
 void write_walk_csv(std::ostream& out, const gait::Motion& motion) {
   std::string line;
-  for (const std::string& h : header()) line += (line.empty() ? "" : ",") + h;
+  for (const std::string& h : header())
+    line += (line.empty() ? "" : ",") + h;
   out << line << "\n";
   for (const gait::Frame& f : motion.frames) {
     line.clear();
@@ -72,7 +60,8 @@ void write_walk_csv(std::ostream& out, const gait::Motion& motion) {
     append(line, f.pose.pelvis.y, 6);
     append(line, rig::degrees(f.pose.pelvis_tilt), 4);
     for (const rig::LegAngles& a : f.pose.legs) {
-      for (double v : {a.hip, a.knee, a.ankle, a.toe}) append(line, rig::degrees(v), 4);
+      for (double v : {a.hip, a.knee, a.ankle, a.toe})
+        append(line, rig::degrees(v), 4);
     }
     line += f.contact[0] ? ",1" : ",0";
     line += f.contact[1] ? ",1" : ",0";
@@ -90,9 +79,10 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
   const std::string where(source);
   std::string line;
   if (!std::getline(in, line)) throw fuzzy::ParseError(where, 1, "the file is empty");
-  const std::vector<std::string> columns = split(line);
+  const std::vector<std::string> columns = detail::split_csv_line(line);
   std::map<std::string, std::size_t> index;
-  for (std::size_t i = 0; i < columns.size(); ++i) index[columns[i]] = i;
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    index[columns[i]] = i;
   std::vector<std::size_t> wanted;
   for (const std::string& h : header()) {
     const auto it = index.find(h);
@@ -104,7 +94,7 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
   while (std::getline(in, line)) {
     ++number;
     if (line.empty() || line == "\r") continue;
-    const std::vector<std::string> cells = split(line);
+    const std::vector<std::string> cells = detail::split_csv_line(line);
     std::vector<double> v;
     v.reserve(wanted.size());
     for (std::size_t k = 0; k < wanted.size(); ++k) {
@@ -126,7 +116,8 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
     k += 2;
     f.pose.pelvis_tilt = rig::radians(v[k++]);
     for (rig::LegAngles& a : f.pose.legs) {
-      for (double* field : {&a.hip, &a.knee, &a.ankle, &a.toe}) *field = rig::radians(v[k++]);
+      for (double* field : {&a.hip, &a.knee, &a.ankle, &a.toe})
+        *field = rig::radians(v[k++]);
     }
     f.contact = {v[k] >= 0.5, v[k + 1] >= 0.5};
     k += 2;
@@ -159,8 +150,8 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
   try {
     rig::validate(s);
   } catch (const std::invalid_argument& e) {
-    throw fuzzy::ParseError(where, 2, std::string("the leg's points do not make a plausible rig: ") +
-                                          e.what());
+    throw fuzzy::ParseError(
+        where, 2, std::string("the leg's points do not make a plausible rig: ") + e.what());
   }
   const double span = motion.frames.back().time - motion.frames.front().time;
   if (!(span > 0.0)) throw fuzzy::ParseError(where, number, "time does not increase");
@@ -181,7 +172,8 @@ void write_terrain_csv(std::ostream& out, const terrain::Terrain& terrain, doubl
 terrain::Terrain read_terrain_csv(std::istream& in, std::string_view source) {
   const std::string where(source);
   std::string line;
-  if (!std::getline(in, line) || split(line) != std::vector<std::string>{"x", "y"}) {
+  if (!std::getline(in, line) ||
+      detail::split_csv_line(line) != std::vector<std::string>{"x", "y"}) {
     throw fuzzy::ParseError(where, 1, "expected the header 'x,y'");
   }
   std::vector<rig::Point> points;
@@ -189,7 +181,7 @@ terrain::Terrain read_terrain_csv(std::istream& in, std::string_view source) {
   while (std::getline(in, line)) {
     ++number;
     if (line.empty() || line == "\r") continue;
-    const std::vector<std::string> cells = split(line);
+    const std::vector<std::string> cells = detail::split_csv_line(line);
     if (cells.size() != 2) throw fuzzy::ParseError(where, number, "expected two values 'x,y'");
     const std::optional<double> x = fuzzy::parse_scalar(cells[0]);
     const std::optional<double> y = fuzzy::parse_scalar(cells[1]);

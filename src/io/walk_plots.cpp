@@ -147,17 +147,6 @@ std::string score_text(const gait::JointScore& score) {
   return "RMSE " + degrees_text(score.rmse) + ", r " + fixed(score.pearson, 2);
 }
 
-// Where the swing knee flexion peaks: the largest value in the second half of the cycle, as the
-// evaluation finds it.
-std::pair<double, double> swing_peak(const gait::Curve& knee) {
-  std::pair<double, double> peak{0.0, -std::numeric_limits<double>::infinity()};
-  for (int k = gait::kCycleSamples / 2; k < gait::kCycleSamples; ++k) {
-    const double v = knee.mean[static_cast<std::size_t>(k)];
-    if (v > peak.second) peak = {100.0 * k / (gait::kCycleSamples - 1), v};
-  }
-  return peak;
-}
-
 struct ValueRange {
   double low = std::numeric_limits<double>::infinity();
   double high = -std::numeric_limits<double>::infinity();
@@ -371,19 +360,6 @@ void draw_ground(svg::Panel& panel, const terrain::Terrain& terrain, double x0, 
   panel.line(surface, {.color = kGroundLine, .width = 1.6});
 }
 
-// Left heel strikes (contact begins), at least 0.35 s apart as the evaluation counts them.
-std::vector<std::size_t> left_heel_strikes(const gait::Motion& motion) {
-  const auto min_gap = static_cast<std::size_t>(std::max(1.0, 0.35 * motion.fps));
-  std::vector<std::size_t> strikes;
-  for (std::size_t i = 1; i < motion.frames.size(); ++i) {
-    if (motion.frames[i].contact[0] && !motion.frames[i - 1].contact[0] &&
-        (strikes.empty() || i - strikes.back() >= min_gap)) {
-      strikes.push_back(i);
-    }
-  }
-  return strikes;
-}
-
 void check_motion(const gait::Motion& motion) {
   if (motion.frames.size() < 2 || !(motion.fps > 0.0) || !std::isfinite(motion.fps)) {
     throw std::invalid_argument("the walk needs at least two frames and a positive frame rate");
@@ -394,7 +370,7 @@ void check_motion(const gait::Motion& motion) {
 // The frames [begin, end] of left stride `index`; throws when the walk has no such stride.
 std::pair<std::size_t, std::size_t> stride_frames(const gait::Motion& motion, int index,
                                                   int count) {
-  const std::vector<std::size_t> strikes = left_heel_strikes(motion);
+  const std::vector<std::size_t> strikes = gait::heel_strikes(motion, rig::Side::Left);
   const auto last = static_cast<std::size_t>(index + count);
   if (index < 0 || count < 1 || last >= strikes.size()) {
     const std::size_t strides = strikes.empty() ? 0 : strikes.size() - 1;
@@ -550,14 +526,14 @@ svg::Figure plot_gait_curves(const gait::GaitReport& report, const gait::Normati
                 {.size = 10.5, .color = kMuted, .anchor = svg::Anchor::Start, .dx = 5});
 
     if (joint == GaitJoint::Knee) {
-      const auto [at, peak] = swing_peak(curve);
+      const auto [at, peak] = gait::swing_peak(curve);
       const Point mark[] = {{at, peak}};
       panel.line(mark,
                  {.color = walk, .width = 0, .marker = svg::Marker::Circle, .marker_size = 7.5});
       std::string text =
           "peak " + fixed(peak, 0) + std::string(kDegree) + " at " + percent_text(at);
       if (normative) {
-        const auto [ref_at, ref_peak] = swing_peak(*normative);
+        const auto [ref_at, ref_peak] = gait::swing_peak(*normative);
         const Point ref_mark[] = {{ref_at, ref_peak}};
         panel.line(
             ref_mark,

@@ -17,16 +17,12 @@ double round_significant(double v, int digits) {
   return std::round(v * magnitude) / magnitude;
 }
 
-gait::ControllerSet rebuild(const gait::ControllerSet& base,
-                            const std::vector<fuzzy::Engine>& engines, double inertia) {
-  gait::ControllerSet set;
-  set.name = base.name;
-  set.description = base.description;
-  set.pelvis_tilt = base.pelvis_tilt;
-  set.swing_knee_reference_sweep = base.swing_knee_reference_sweep;
+gait::ControllerSet rebuild(const gait::ControllerSet& base, std::vector<fuzzy::Engine>& engines,
+                            double inertia) {
+  gait::ControllerSet set = base;
   set.inertia = inertia;
   for (std::size_t s = 0; s < engines.size(); ++s) {
-    set.controllers.emplace_back(engines[s], base.controllers[s].source());
+    set.controllers[s] = gait::Controller(std::move(engines[s]), base.controllers[s].source());
   }
   return set;
 }
@@ -51,8 +47,8 @@ SetParameters::SetParameters(const gait::ControllerSet& base, double minimum_ine
   // Interior knots of the inputs of partition controllers: when along its progress a joint
   // changes its mind.
   for (std::size_t s = 0; s < base.controllers.size(); ++s) {
+    if (!base.controllers[s].fast_path()) continue;
     const fuzzy::Engine& e = base.controllers[s].engine();
-    if (!fuzzy::as_partition(e)) continue;
     for (std::size_t i = 0; i < e.inputs.size(); ++i) {
       const fuzzy::InputVariable& v = e.inputs[i];
       // Only timing moves: the words of angles ("flat" is 0 degrees) keep their meaning.
@@ -164,6 +160,8 @@ double word_penalty(const gait::ControllerSet& set) {
   return penalty;
 }
 
+namespace {
+
 // Recovery from an awkward start: the walk must stay sound and settle into steps of the
 // commanded length within three steps. Returns 0 when it does.
 double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::string* report) {
@@ -209,6 +207,35 @@ double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::st
   return cost;
 }
 
+}  // namespace
+
+WalkCondition main_condition(const gait::Normative& reference) {
+  return {.stature = 1.75,
+          .step_length = 0.70,
+          .reference = &reference,
+          .realism_weight = 1.0,
+          .enforce_bounds = true};
+}
+
+std::vector<WalkCondition> grid_conditions(const gait::Normative& reference,
+                                           const gait::Normative& slower,
+                                           const gait::Normative& faster) {
+  return {main_condition(reference),
+          {.stature = 1.75, .step_length = 0.55, .reference = &slower, .realism_weight = 0.3},
+          {.stature = 1.75, .step_length = 0.85, .reference = &faster, .realism_weight = 0.3},
+          {.stature = 1.75, .step_length = 0.50},
+          // The grid's corners: the shortest and the longest steps for the leg.
+          {.stature = 2.00, .step_length = 0.50},
+          {.stature = 1.50, .step_length = 0.85}};
+}
+
+std::vector<std::uint64_t> recovery_seeds(int count) {
+  std::vector<std::uint64_t> seeds;
+  for (int k = 0; k < count; ++k)
+    seeds.push_back(1000 + static_cast<std::uint64_t>(k));
+  return seeds;
+}
+
 double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std::string* report) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   const double words = word_penalty(set);
@@ -246,7 +273,7 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
         double realism = 2.0 * (r.thigh_score->rmse + r.knee_score->rmse + r.ankle_score->rmse);
         realism += 10.0 * (2.0 - r.thigh_score->pearson - r.knee_score->pearson) +
                    20.0 * (1.0 - r.ankle_score->pearson);
-        if (c.realism_weight >= 1.0) {
+        if (c.enforce_bounds) {
           realism += 10.0 * (std::max(0.0, r.thigh_score->rmse - options.thigh_rmse_max) +
                              std::max(0.0, r.knee_score->rmse - options.knee_rmse_max) +
                              std::max(0.0, r.ankle_score->rmse - options.ankle_rmse_max));
@@ -303,8 +330,15 @@ TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
   };
   auto cost = [&](const std::vector<double>& x) { return walk_cost(parameters.apply(x), options); };
   const CmaesResult r = minimize(cost, parameters.values(), cma);
-  TuneResult out{parameters.apply(r.best), r.best_cost, cost(parameters.values()), r.evaluations};
-  if (options.polish_generations > 0) {
+  TuneResult out;
+  out.set = parameters.apply(r.best);
+  out.cost = r.best_cost;
+  out.evaluations = r.evaluations;
+  if (options.polish_generations <= 0) {
+    // The values as the set holds them, rounded.
+    const SetParameters tuned(out.set, options.minimum_inertia);
+    out.rounded = tuned.rounded(tuned.values(), options.digits);
+  } else {
     // The written values are rounded for the artist: polish the result where the cost sees
     // exactly those rounded values.
     auto rounded_cost = [&](const std::vector<double>& x) {
@@ -321,6 +355,7 @@ TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
     out.set = parameters.rounded(p.best, options.digits);
     out.cost = p.best_cost;
     out.evaluations += p.evaluations;
+    out.rounded = out.set;
   }
   return out;
 }

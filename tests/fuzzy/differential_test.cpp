@@ -11,7 +11,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -29,6 +28,7 @@
 #include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
 #include "random_engine.hpp"
+#include "support/bits.hpp"
 
 namespace {
 
@@ -64,10 +64,7 @@ bool agree(double expected, double actual) {
 }
 
 // Same bits, but any NaN equals any NaN (payloads and signs of NaN carry no meaning here).
-bool bit_identical(double a, double b) {
-  if (std::isnan(a) && std::isnan(b)) return true;
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-}
+using fuzzygait::test::same_bits;
 
 std::string text(double value) {
   char buffer[40];
@@ -189,7 +186,7 @@ bool compare_engine(std::size_t index, Tally& tally) {
       const double actual = outputs[o];
       ++tally.values;
       if (!std::isnan(expected)) ++tally.numbers;
-      if (!bit_identical(expected, actual)) ++tally.not_identical;
+      if (!same_bits(expected, actual)) ++tally.not_identical;
       if (std::isfinite(expected) && std::isfinite(actual)) {
         tally.worst = std::max(tally.worst, std::abs(expected - actual));
       }
@@ -201,7 +198,7 @@ bool compare_engine(std::size_t index, Tally& tally) {
         }
       }
       const double reread = rewritten->getOutputVariable(o)->getValue();
-      if (rewritten_agrees && !bit_identical(expected, reread)) {
+      if (rewritten_agrees && !same_bits(expected, reread)) {
         rewritten_agrees = false;
         ADD_FAILURE() << where << " " << engine.outputs[o].name << ": fuzzylite gives "
                       << text(expected) << " for the text and " << text(reread)
@@ -340,7 +337,7 @@ TEST(Differential, GeneratorIsDeterministic) {
     const std::vector<double> rows_b = fuzzygait::fuzzy::testing::random_rows(b, 10, seed);
     ASSERT_EQ(rows_a.size(), rows_b.size());
     for (std::size_t i = 0; i < rows_a.size(); ++i) {
-      EXPECT_TRUE(bit_identical(rows_a[i], rows_b[i]));
+      EXPECT_TRUE(same_bits(rows_a[i], rows_b[i]));
     }
   }
 }
@@ -378,7 +375,7 @@ RuleBlock: rules
   // low 0.8 and high 0.2: the ramp reaches 0.2 at 0.1 (its membership at 0.2 would be 0.4).
   const auto [fuzzylite, fuzzygait] = evaluate_both(fll, 0.2);
   EXPECT_DOUBLE_EQ(fuzzylite, 0.8 * 0.3 + 0.2 * 0.1);
-  EXPECT_TRUE(bit_identical(fuzzylite, fuzzygait)) << fuzzylite << " " << fuzzygait;
+  EXPECT_TRUE(same_bits(fuzzylite, fuzzygait)) << fuzzylite << " " << fuzzygait;
 }
 
 // fuzzylite resolves a Function term's variables while it reads the term, so write_fll puts a
@@ -404,8 +401,8 @@ RuleBlock: rules
   for (const double input : {0.25, 0.75}) {
     const auto [original, fuzzygait] = evaluate_both(fll, input);
     const auto [rewritten, again] = evaluate_both(written, input);
-    EXPECT_TRUE(bit_identical(original, rewritten)) << original << " " << rewritten;
-    EXPECT_TRUE(bit_identical(original, fuzzygait)) << original << " " << fuzzygait;
+    EXPECT_TRUE(same_bits(original, rewritten)) << original << " " << rewritten;
+    EXPECT_TRUE(same_bits(original, fuzzygait)) << original << " " << fuzzygait;
   }
 }
 

@@ -5,24 +5,18 @@
 #include <fl/Headers.h>
 #include <gtest/gtest.h>
 
-#include <bit>
-#include <cmath>
-#include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
+#include "support/fuzzylite_compare.hpp"
 
 namespace {
 
 using namespace fuzzygait::fuzzy;
-
-bool same_bits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b) ||
-         (std::isnan(a) && std::isnan(b));
-}
 
 // Evaluates both engines on the same rows, in order, and expects the same bits everywhere.
 void expect_fuzzylite_bits(const std::string& fll) {
@@ -33,29 +27,19 @@ void expect_fuzzylite_bits(const std::string& fll) {
   std::vector<double> values = {kNaN, -kInfinity, kInfinity, -0.25, 1.25, 0.0, 1.0};
   for (int i = 0; i <= 60; ++i)
     values.push_back(i / 60.0);
-  const std::size_t n_in = engine.inputs.size();
-  std::vector<double> inputs(n_in);
-  std::vector<double> outputs(engine.outputs.size());
-  std::size_t mismatches = 0;
-  std::size_t rows = 1;
-  for (std::size_t i = 0; i < n_in; ++i)
-    rows *= values.size();
-  for (std::size_t row = 0; row < rows; ++row) {
-    for (std::size_t i = 0; i < n_in; ++i) {
-      inputs[i] = values[(i == 0 ? row : row / values.size()) % values.size()];
-      reference->getInputVariable(engine.inputs[i].name)->setValue(inputs[i]);
-    }
-    reference->process();
-    evaluator.evaluate(inputs, outputs, workspace);
-    for (std::size_t o = 0; o < outputs.size(); ++o) {
-      const double expected = reference->getOutputVariable(engine.outputs[o].name)->getValue();
-      if (!same_bits(expected, outputs[o]) && ++mismatches <= 5) {
-        ADD_FAILURE() << engine.name << " row " << row << " output " << engine.outputs[o].name
-                      << ": fuzzylite " << expected << ", fuzzygait " << outputs[o];
-      }
-    }
+  fuzzygait::test::FuzzyliteComparison c;
+  c.label = engine.name;
+  for (const InputVariable& v : engine.inputs) {
+    c.inputs.push_back(v.name);
+    c.values.push_back(values);
   }
-  EXPECT_EQ(mismatches, 0u) << engine.name;
+  for (const OutputVariable& v : engine.outputs)
+    c.outputs.push_back(v.name);
+  c.max_reported = 5;
+  fuzzygait::test::expect_fuzzylite_outputs(
+      *reference, c, [&](std::span<const double> inputs, std::span<double> outputs) {
+        evaluator.evaluate(inputs, outputs, workspace);
+      });
 }
 
 constexpr const char* kInput = R"(InputVariable: a

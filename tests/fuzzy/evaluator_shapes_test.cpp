@@ -2,23 +2,19 @@
 // tolerant comparisons must give the templated shapes' bits.
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/fuzzy/shapes.hpp"
+#include "support/bits.hpp"
 
 using namespace fuzzygait::fuzzy;
 
 namespace {
 
-bool same_bits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b) ||
-         (std::isnan(a) && std::isnan(b));
-}
+using fuzzygait::test::same_bits;
 
 // The evaluator computes Triangle, Trapezoid and Ramp with the tolerant comparisons reduced to
 // one subtraction each; they must give the templated shapes' bits everywhere, at and around the

@@ -3,12 +3,17 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "fuzzygait/fuzzy/fll.hpp"
 #include "fuzzygait/gait/controllers.hpp"
+#include "support/controller_sets.hpp"
+#include "support/text.hpp"
 
 using namespace fuzzygait;
 using ::testing::HasSubstr;
@@ -18,12 +23,8 @@ namespace {
 std::map<std::string, std::string> default_files() {
   std::map<std::string, std::string> files;
   for (const auto& entry :
-       std::filesystem::directory_iterator(std::filesystem::path(FUZZYGAIT_SOURCE_DIR) /
-                                           "controllers" / "default")) {
-    std::ifstream in(entry.path());
-    std::ostringstream text;
-    text << in.rdbuf();
-    files[entry.path().filename().string()] = text.str();
+       std::filesystem::directory_iterator(fuzzygait::test::controllers_dir() / "default")) {
+    files[entry.path().filename().string()] = fuzzygait::test::read_text(entry.path());
   }
   return files;
 }
@@ -37,16 +38,32 @@ std::string error_of(const std::string& manifest, const std::map<std::string, st
   return "no error";
 }
 
+// Every set compiled into the library is the one in controllers/, and every set there (a folder
+// with a manifest) is compiled in.
 TEST(ControllerSet, BuiltinMatchesTheFilesOnDisk) {
-  const gait::ControllerSet builtin = gait::ControllerSet::builtin("default");
-  const gait::ControllerSet loaded = gait::ControllerSet::load(
-      std::filesystem::path(FUZZYGAIT_SOURCE_DIR) / "controllers" / "default");
-  ASSERT_EQ(builtin.controllers.size(), 8u);
-  for (std::size_t s = 0; s < 8; ++s) {
-    EXPECT_EQ(builtin.controllers[s].engine(), loaded.controllers[s].engine());
+  const std::vector<std::string> shipped = fuzzygait::test::shipped_set_names();
+  const std::vector<std::string> names = gait::ControllerSet::builtin_names();
+  EXPECT_EQ(names, shipped);
+  EXPECT_THAT(names, ::testing::Contains("default"));
+  // Compiled-in files outside a set (the paper's example engine) are not a set.
+  EXPECT_THROW(gait::ControllerSet::builtin("paper"), std::invalid_argument);
+  for (const std::string& name : names) {
+    SCOPED_TRACE(name);
+    const gait::ControllerSet builtin = gait::ControllerSet::builtin(name);
+    const gait::ControllerSet loaded =
+        gait::ControllerSet::load(fuzzygait::test::controllers_dir() / name);
+    ASSERT_EQ(builtin.controllers.size(), static_cast<std::size_t>(gait::kSlotCount));
+    ASSERT_EQ(loaded.controllers.size(), builtin.controllers.size());
+    for (std::size_t s = 0; s < builtin.controllers.size(); ++s) {
+      EXPECT_EQ(builtin.controllers[s].engine(), loaded.controllers[s].engine())
+          << gait::slot_name(static_cast<int>(s));
+    }
+    EXPECT_EQ(builtin.name, loaded.name);
+    EXPECT_EQ(builtin.description, loaded.description);
+    EXPECT_EQ(builtin.inertia, loaded.inertia);
+    EXPECT_EQ(builtin.pelvis_tilt, loaded.pelvis_tilt);
+    EXPECT_EQ(builtin.swing_knee_reference_sweep, loaded.swing_knee_reference_sweep);
   }
-  EXPECT_EQ(builtin.inertia, loaded.inertia);
-  EXPECT_THAT(gait::ControllerSet::builtin_names(), ::testing::Contains("default"));
 }
 
 TEST(ControllerSet, ErrorsNameTheFileAndTheProblem) {
@@ -119,8 +136,7 @@ TEST(ControllerSet, FastPathAgreesWithTheFuzzyEvaluator) {
       double expected = 0.0;
       general.evaluate(std::span<const double>(in.data(), c.input_count()),
                        std::span<double>(&expected, 1), w);
-      EXPECT_NEAR(c.evaluate(m, unused), expected, 1e-9 * (1.0 + std::abs(expected)))
-          << c.source();
+      EXPECT_NEAR(c.evaluate(m, unused), expected, 1e-9 * (1.0 + std::abs(expected))) << c.source();
     }
   }
 }

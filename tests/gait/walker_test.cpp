@@ -8,24 +8,14 @@
 #include "fuzzygait/gait/motion.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "support/allocation_counter.hpp"
+#include "support/walks.hpp"
 
 using namespace fuzzygait;
 
 namespace {
 
-const gait::ControllerSet& default_set() {
-  static const gait::ControllerSet set = gait::ControllerSet::builtin("default");
-  return set;
-}
-
-gait::Walker make_walker(const terrain::Terrain& ground, double step = 0.70, double stature = 1.75,
-                         gait::StartPose start = {}) {
-  gait::WalkerOptions o;
-  o.segments = rig::segments_from_stature(stature);
-  o.step_length = step;
-  o.start = start;
-  return gait::Walker(default_set(), o, ground);
-}
+using fuzzygait::test::default_set;
+using fuzzygait::test::make_walker;
 
 TEST(Walker, SameInputsGiveBitIdenticalOutputs) {
   const terrain::Terrain ground = terrain::Terrain::flat();
@@ -46,10 +36,15 @@ TEST(Walker, SameInputsGiveBitIdenticalOutputs) {
     const gait::LegState& l = s.legs[k];
     const gait::LegState& m = t.legs[k];
     EXPECT_EQ(l.phase, m.phase);
-    for (auto [x, y] : {std::pair{l.angles.hip, m.angles.hip}, {l.angles.knee, m.angles.knee},
-                        {l.angles.ankle, m.angles.ankle}, {l.angles.toe, m.angles.toe},
-                        {l.velocity.hip, m.velocity.hip}, {l.velocity.knee, m.velocity.knee},
-                        {l.anchor.x, m.anchor.x}, {l.delta, m.delta}, {l.target_x, m.target_x}}) {
+    for (auto [x, y] : {std::pair{l.angles.hip, m.angles.hip},
+                        {l.angles.knee, m.angles.knee},
+                        {l.angles.ankle, m.angles.ankle},
+                        {l.angles.toe, m.angles.toe},
+                        {l.velocity.hip, m.velocity.hip},
+                        {l.velocity.knee, m.velocity.knee},
+                        {l.anchor.x, m.anchor.x},
+                        {l.delta, m.delta},
+                        {l.target_x, m.target_x}}) {
       EXPECT_TRUE(same(x, y));
     }
   }

@@ -22,12 +22,14 @@
 #include "fuzzygait/io/bvh.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
+#include "support/text.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using fuzzygait::gait::Motion;
 using fuzzygait::rig::degrees;
+using fuzzygait::test::read_text;
 
 constexpr double kAngleTolerance = 0.01;     // degrees
 constexpr double kPositionTolerance = 1e-4;  // metres
@@ -75,13 +77,6 @@ std::string quote(const std::string& text) {
 int run(const std::string& command) {
   const int status = std::system(command.c_str());
   return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string contents(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 // A CSV of numbers with a header row.
@@ -193,8 +188,8 @@ TEST(BvhImport, ThreeJsBvhLoaderSeesTheWalksAngles) {
   const int status = run(quote(node) + " " + quote((js / "bvh_angles.mjs").string()) + " " +
                          quote(walk().bvh.string()) + " > " + quote(out.string()) + " 2> " +
                          quote(errors.string()));
-  ASSERT_EQ(status, 0) << "node bvh_angles.mjs failed:\n" << contents(errors);
-  EXPECT_EQ(contents(errors), "") << "three.js complained";
+  ASSERT_EQ(status, 0) << "node bvh_angles.mjs failed:\n" << read_text(errors);
+  EXPECT_EQ(read_text(errors), "") << "three.js complained";
   expect_matches_walk(read_table(out), "three.js BVHLoader");
 }
 
@@ -210,7 +205,7 @@ TEST(BvhImport, BlenderImporterSeesTheWalksAngles) {
   const int status = run(quote(blender) + " -b --factory-startup --python-exit-code 1 --python " +
                          quote(script) + " -- " + quote(walk().bvh.string()) + " " +
                          quote(out.string()) + " > " + quote(log.string()) + " 2>&1");
-  ASSERT_EQ(status, 0) << "Blender failed:\n" << contents(log);
+  ASSERT_EQ(status, 0) << "Blender failed:\n" << read_text(log);
   expect_matches_walk(read_table(out), "Blender's BVH importer");
 }
 

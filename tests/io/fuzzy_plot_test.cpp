@@ -15,6 +15,7 @@
 #include <string>
 
 #include "fuzzygait/fuzzy/fll.hpp"
+#include "support/text.hpp"
 #include "xml_check.hpp"
 
 using fuzzygait::fuzzy::Engine;
@@ -23,6 +24,9 @@ using fuzzygait::fuzzy::read_fll_file;
 using fuzzygait::io::EnginePlotOptions;
 using fuzzygait::io::plot_engine;
 using fuzzygait::test::check_xml;
+using fuzzygait::test::count;
+using fuzzygait::test::keep;
+using fuzzygait::test::read_text;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
@@ -31,14 +35,6 @@ namespace {
 const std::filesystem::path kEaseInOut =
     std::filesystem::path(FUZZYGAIT_SOURCE_DIR) / "controllers/paper/ease_in_out.fll";
 const std::filesystem::path kExamples = FUZZYLITE_EXAMPLES_DIR;
-
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
-    ++n;
-  }
-  return n;
-}
 
 // Term curves and Constant stems are the only lines drawn 1.9 pixels wide.
 std::size_t term_curves(const std::string& svg) {
@@ -52,19 +48,6 @@ std::size_t term_count(const Engine& engine) {
   for (const auto& v : engine.outputs)
     n += v.terms.size();
   return n;
-}
-
-void keep(const std::string& svg, const std::string& name) {
-  if (const char* folder = std::getenv("FUZZYGAIT_SVG_OUT")) {
-    std::ofstream(std::filesystem::path(folder) / name) << svg;
-  }
-}
-
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 }  // namespace
@@ -216,6 +199,10 @@ TEST(FuzzyPlot, RejectsBadOptions) {
 
 TEST(FuzzyPlot, FuzzyliteExamples) {
   if (!std::filesystem::exists(kExamples / "mamdani/AllTerms.fll")) {
+    if constexpr (FUZZYGAIT_REQUIRE_FUZZYLITE != 0) {
+      FAIL() << "fuzzylite's examples are not installed in " << kExamples
+             << " (FUZZYGAIT_REQUIRE_FUZZYLITE is ON)";
+    }
     GTEST_SKIP() << "fuzzylite's examples are not installed";
   }
   for (const char* name :

@@ -17,28 +17,18 @@
 #include <string>
 #include <vector>
 
+#include "support/text.hpp"
 #include "xml_check.hpp"
 
 namespace svg = fuzzygait::io::svg;
 using fuzzygait::test::check_xml;
+using fuzzygait::test::count;
+using fuzzygait::test::keep;
+using fuzzygait::test::read_text;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
 namespace {
-
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
-    ++n;
-  }
-  return n;
-}
-
-void keep(const svg::Figure& figure, const std::string& name) {
-  if (const char* folder = std::getenv("FUZZYGAIT_SVG_OUT")) {
-    figure.save(std::filesystem::path(folder) / name);
-  }
-}
 
 // A made-up joint angle over the gait cycle (degrees), smooth and periodic.
 double joint_angle(double percent, double mean, double a1, double phase1, double a2,
@@ -373,10 +363,7 @@ TEST(Svg, SavesToAFile) {
   const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / "svg_test.svg";
   const svg::Figure figure = gait_curves();
   figure.save(path);
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_EQ(text.str(), figure.svg());
+  EXPECT_EQ(read_text(path), figure.svg());
   EXPECT_THROW(figure.save("/nonexistent-folder/x.svg"), std::runtime_error);
 }
 

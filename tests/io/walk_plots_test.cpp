@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "fuzzygait/io/normative.hpp"
+#include "support/text.hpp"
 #include "xml_check.hpp"
 
 namespace io = fuzzygait::io;
@@ -27,6 +28,8 @@ namespace rig = fuzzygait::rig;
 namespace svg = fuzzygait::io::svg;
 using fuzzygait::terrain::Terrain;
 using fuzzygait::test::check_xml;
+using fuzzygait::test::count;
+using fuzzygait::test::keep;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
@@ -94,14 +97,6 @@ gait::GaitReport report(const gait::Motion& motion = walk()) {
   return gait::evaluate(motion, Terrain::flat(), &reference(), 0.7);
 }
 
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
-    ++n;
-  }
-  return n;
-}
-
 std::size_t count_matches(const std::string& text, const std::string& pattern) {
   const std::regex re(pattern);
   return static_cast<std::size_t>(
@@ -124,12 +119,6 @@ std::string two_decimals(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.2f", value);
   return buffer;
-}
-
-void keep(const svg::Figure& figure, const std::string& name) {
-  if (const char* folder = std::getenv("FUZZYGAIT_SVG_OUT")) {
-    figure.save(std::filesystem::path(folder) / name);
-  }
 }
 
 // The walk's mean curves are the only polylines drawn this blue and this wide; the reference

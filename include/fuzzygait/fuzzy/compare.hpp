@@ -59,6 +59,4 @@ T nan_max(const T& a, const T& b) {
   return a > b ? a : b;
 }
 
-inline bool is_finite(double x) { return std::isfinite(x); }
-
 }  // namespace fuzzygait::fuzzy

@@ -47,7 +47,8 @@ struct Defuzzifier {
   enum class WeightedType : std::uint8_t { Automatic, TakagiSugeno, Tsukamoto };
 
   // Most samples an integral defuzzifier takes: each evaluation costs resolution times the
-  // activated terms, and the workspace holds two arrays of this size.
+  // activated terms, and the workspace holds three arrays of up to twice this size (Bisector
+  // samples from both ends).
   static constexpr int kMaxResolution = 1'000'000;
 
   Kind kind = Kind::Centroid;
@@ -72,8 +73,8 @@ struct OutputVariable {
   bool lock_range = false;
   SNorm aggregation = SNorm::None;
   std::optional<Defuzzifier> defuzzifier;
-  double default_value = kNaN;   // value when no rule fires
-  bool lock_previous = false;    // when no rule fires, keep the last valid value instead
+  double default_value = kNaN;  // value when no rule fires
+  bool lock_previous = false;   // when no rule fires, keep the last valid value instead
   std::vector<Term> terms;
 
   const Term* find_term(std::string_view term_name) const;
@@ -91,11 +92,18 @@ struct Activation {
     Highest,
     Lowest,
   };
-  enum class Comparison : std::uint8_t { Less, LessOrEqual, Equal, NotEqual, GreaterOrEqual, Greater };
+  enum class Comparison : std::uint8_t {
+    Less,
+    LessOrEqual,
+    Equal,
+    NotEqual,
+    GreaterOrEqual,
+    Greater
+  };
 
   Kind kind = Kind::General;
-  int number_of_rules = 1;   // First, Last, Highest, Lowest
-  double threshold = 0.0;    // First, Last, Threshold
+  int number_of_rules = 1;                             // First, Last, Highest, Lowest
+  double threshold = 0.0;                              // First, Last, Threshold
   Comparison comparison = Comparison::GreaterOrEqual;  // Threshold
 
   std::string text() const;  // FLL text, e.g. "Threshold >= 0.5"
@@ -107,7 +115,7 @@ std::optional<Activation::Comparison> comparison_from_name(std::string_view text
 // "variable is [hedges] term", or "variable is [hedges] any" (then `term` is empty).
 struct Proposition {
   std::string variable;
-  bool output = false;  // refers to an output variable (chained engines)
+  bool output = false;        // refers to an output variable (chained engines)
   std::vector<Hedge> hedges;  // in reading order; applied last-to-first
   std::string term;
   bool operator==(const Proposition&) const = default;

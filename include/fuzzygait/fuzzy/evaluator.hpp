@@ -32,8 +32,6 @@ class Workspace {
   Workspace() = default;
   // Forgets previous outputs, as fuzzylite's Engine::restart().
   void reset();
-  // Output values of the last evaluation.
-  std::span<const double> outputs() const { return output_values_; }
 
  private:
   friend class Evaluator;
@@ -179,6 +177,7 @@ class Evaluator {
 
   double membership(const CompiledTerm& term, double x, Workspace& w) const;
   double fuzzify(const CompiledTerm& term, double x, Workspace& w) const;
+  double general_membership(const CompiledTerm& term, double x, Workspace& w) const;
   double linear(const CompiledTerm& term, const Workspace& w) const;
   double tsukamoto(const CompiledTerm& term, double w, double minimum, double maximum,
                    Workspace& ws) const;
@@ -205,7 +204,7 @@ class Evaluator {
     TNorm deferred_implication = TNorm::None;
   };
   Aggregate aggregate(const CompiledOutput& o, bool defer_last, Workspace& w) const;
-  void sample_grids(std::size_t max_grid_values);
+  void sample_grids();
 
   std::vector<CompiledInput> inputs_;
   std::vector<CompiledOutput> outputs_;

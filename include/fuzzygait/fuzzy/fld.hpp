@@ -1,5 +1,5 @@
-// FLD tables: whitespace-separated columns of numbers under a header of variable names,
-// as fuzzylite writes its datasets.
+// FLD tables: columns of numbers separated by spaces, tabs or commas, under a header of variable
+// names, as fuzzylite writes its datasets.
 #pragma once
 
 #include <iosfwd>

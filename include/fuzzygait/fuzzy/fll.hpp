@@ -16,12 +16,10 @@ class ParseError : public std::runtime_error {
   ParseError(std::string source, int line, const std::string& message);
   const std::string& source() const { return source_; }
   int line() const { return line_; }
-  const std::string& detail() const { return detail_; }
 
  private:
   std::string source_;
   int line_;
-  std::string detail_;
 };
 
 // Parses FLL text. `source` names the text in error messages (usually the file path).

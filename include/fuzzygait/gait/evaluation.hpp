@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fuzzygait/gait/motion.hpp"
+#include "fuzzygait/rig/rig.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
 
 namespace fuzzygait::gait {
@@ -39,23 +40,23 @@ struct JointScore {
 };
 
 struct GaitReport {
-  int cycles = 0;  // complete left cycles measured (the first is skipped)
-  double cycle_time = 0.0;       // s
-  double cycle_time_sd = 0.0;    // s, between cycles: regularity
-  double cadence = 0.0;          // steps per minute
-  double speed = 0.0;            // m/s, pelvis
-  double stance_percent = 0.0;   // left foot in contact, share of the cycle
-  double step_length = 0.0;      // m, heel to heel at successive heel strikes
+  int cycles = 0;               // complete left cycles measured (the first is skipped)
+  double cycle_time = 0.0;      // s
+  double cycle_time_sd = 0.0;   // s, between cycles: regularity
+  double cadence = 0.0;         // steps per minute
+  double speed = 0.0;           // m/s, pelvis
+  double stance_percent = 0.0;  // left foot in contact, share of the cycle
+  double step_length = 0.0;     // m, heel to heel at successive heel strikes
   double step_length_sd = 0.0;
-  double step_error_percent = 0.0;  // against the command, when given
-  double knee_peak = 0.0;           // degrees, swing
-  double knee_peak_percent = 0.0;   // where in the cycle
-  double thigh_range = 0.0;         // degrees, max - min of the mean curve
+  double step_error_percent = 0.0;     // against the command, when given
+  double knee_peak = 0.0;              // degrees, swing
+  double knee_peak_percent = 0.0;      // where in the cycle
+  double thigh_range = 0.0;            // degrees, max - min of the mean curve
   double pelvis_vertical_range = 0.0;  // m, mean cycle
-  double max_slip = 0.0;            // m per frame, foot points in contact
-  double max_penetration = 0.0;     // m below the ground, any foot point
-  double min_toe_clearance = 0.0;   // m, mid-swing (middle 60 % of swing)
-  double max_velocity_jump = 0.0;   // deg/s, largest change of a joint's velocity at a phase switch
+  double max_slip = 0.0;               // m per frame, foot points in contact
+  double max_penetration = 0.0;        // m below the ground, any foot point
+  double min_toe_clearance = 0.0;      // m, mid-swing (middle 60 % of swing)
+  double max_velocity_jump = 0.0;  // deg/s, largest change of a joint's velocity at a phase switch
   double typical_velocity_change = 0.0;  // deg/s, 99th percentile of frame-to-frame changes
   // Mean curves of the left leg over the cycle (degrees): thigh inclination, knee, ankle, toe.
   Curve thigh;
@@ -77,6 +78,18 @@ GaitReport evaluate(const Motion& motion, const terrain::Terrain& terrain,
 // The report as a table people read, and as JSON.
 std::string to_text(const GaitReport& report);
 std::string to_json(const GaitReport& report);
+
+// The frames where a foot's contact begins (heel or forefoot strike), at least 0.35 s apart: the
+// strikes that part evaluate()'s gait cycles.
+std::vector<std::size_t> heel_strikes(const Motion& motion, rig::Side side);
+
+// Where the swing knee flexion peaks: the largest mean value (degrees) in the second half of the
+// cycle, and where (percent of the cycle); 0 at 0 % when no value there is above 0.
+struct CurvePeak {
+  double percent = 0.0;
+  double value = 0.0;
+};
+CurvePeak swing_peak(const Curve& knee);
 
 // Resamples a periodic series to kCycleSamples points over [begin, end] frames.
 std::array<double, kCycleSamples> resample_cycle(const std::vector<double>& values,

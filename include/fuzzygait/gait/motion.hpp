@@ -23,7 +23,17 @@ struct Motion {
   std::vector<Frame> frames;
 };
 
+// The walker as it stands now: its pose, foot points and contacts, stamped with `time` (s).
+Frame capture_frame(const Walker& walker, double time);
+
 // Runs a walker for `duration` seconds and samples it at `fps` (frame 0 is the start pose).
 Motion record(Walker& walker, double duration, double fps);
+
+// Runs a walker until `cycles` left gait cycles have completed after the first, i.e. until the
+// left heel has struck cycles + 2 times (evaluate() skips the cycle before the second strike),
+// sampling it at `fps` (frame 0 is the start pose). Throws std::runtime_error when that has not
+// happened within 3 s per cycle, cycles + 2 of them; std::invalid_argument for an fps outside
+// 1..10000 or fewer than one cycle.
+Motion record_cycles(Walker& walker, int cycles, double fps);
 
 }  // namespace fuzzygait::gait

@@ -1,5 +1,5 @@
 // The paper's walking system: each frame the walker measures its metrics, asks the fuzzy
-// controllers for joint velocities, integrates them at a fixed time step, and keeps planted feet
+// controllers for joint velocities, integrates them in small time steps, and keeps planted feet
 // where they are. This is the runtime API a game calls every frame.
 //
 // Who drives what:
@@ -49,10 +49,12 @@ struct LegState {
   rig::LegAngles velocity;   // radians per second
   rig::Point anchor;         // the planted contact point (heel in Heel/Flat, ball in Ball)
   double sweep_start = 0.0;  // thigh inclination where delta = -1 (radians)
-  double sweep_end = 0.0;    // stance: thigh inclination where delta = +1
-  double target_x = 0.0;     // swing: where the heel should land
-  double strike_x = 0.0;     // stance: where the heel landed
-  double delta = 0.0;        // the leg's last progress metric
+  // Thigh inclination where delta = +1 (radians): in stance set at the strike from the step
+  // length; in swing rewritten every step, where a straight leg's heel would point at the target.
+  double sweep_end = 0.0;
+  double target_x = 0.0;  // swing: where the heel should land
+  double strike_x = 0.0;  // stance: where the heel landed
+  double delta = 0.0;     // the leg's last progress metric
 };
 
 // Everything that changes while walking: plain data, so many characters pack into arrays.
@@ -107,7 +109,8 @@ class Walker {
   void set_step_length(double metres);
   double step_length() const { return step_length_; }
 
-  // Advances by dt seconds in fixed time steps. No allocation, no file access.
+  // Advances by dt seconds in equal sub-steps no longer than the time step. No allocation, no
+  // file access.
   void advance(double dt);
 
   const WalkerState& state() const { return state_; }
@@ -118,7 +121,8 @@ class Walker {
   double time() const { return state_.time; }
   const rig::Segments& segments() const { return segments_; }
 
-  // Contact events since the last call (capacity fixed at construction; oldest dropped).
+  // Contact events since the last clear_events() (capacity fixed at construction; oldest
+  // dropped).
   const std::vector<EventRecord>& events() const { return events_; }
   void clear_events() { events_.clear(); }
 
@@ -128,6 +132,7 @@ class Walker {
  private:
   void step(double h);
   void start(const StartPose& start_pose);
+  void warm_up(double seconds);
   void record(rig::Side side, Event event, rig::Point where);
   void strike(int leg, Phase phase, rig::Point contact);
   void lift_off(int leg);

@@ -152,8 +152,6 @@ class Panel {
   // the view of frame 0.
   Panel& animated_view(std::span<const Point> shifts, double period_seconds);
 
-  Color next_color() const;  // the palette colour the next item without a colour will get
-
  private:
   friend class Figure;
   Panel();
@@ -174,7 +172,6 @@ class Figure {
   Panel& add_panel(int column_span = 1);
 
   std::size_t panel_count() const { return panels_.size(); }
-  Panel& panel(std::size_t index) { return *panels_.at(index); }
 
   std::string svg() const;                             // the whole SVG document
   void save(const std::filesystem::path& path) const;  // writes svg(); throws std::runtime_error

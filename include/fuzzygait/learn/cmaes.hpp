@@ -10,12 +10,12 @@
 namespace fuzzygait::learn {
 
 struct CmaesOptions {
-  double sigma = 0.3;            // initial step size, in the units of the (scaled) parameters
-  int population = 0;            // 0: 4 + 3 ln(n)
+  double sigma = 0.3;  // initial step size, in the units of the (scaled) parameters
+  int population = 0;  // 0: 4 + 3 ln(n)
   int max_generations = 300;
-  double target = -1e300;        // stop when the best cost falls below this
+  double target = -1e300;  // stop when the best cost falls below this
   std::uint64_t seed = 1;
-  int threads = 1;               // candidates of a generation evaluated in parallel
+  int threads = 1;  // candidates of a generation evaluated in parallel
   // Called after each generation with (generation, best cost so far, best parameters).
   std::function<void(int, double, const std::vector<double>&)> progress;
 };
@@ -23,7 +23,6 @@ struct CmaesOptions {
 struct CmaesResult {
   std::vector<double> best;
   double best_cost = 0.0;
-  int generations = 0;
   int evaluations = 0;
 };
 

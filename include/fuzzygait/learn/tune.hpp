@@ -20,7 +20,22 @@ struct WalkCondition {
   // Curves scored against this reference with this weight (none: contact and timing only).
   const gait::Normative* reference = nullptr;
   double realism_weight = 1.0;
+  // The curve errors pay steeply above TuneOptions' thigh/knee/ankle_rmse_max (the main
+  // condition, whose curves the acceptance bounds judge).
+  bool enforce_bounds = false;
 };
+
+// The main condition: a 1.75 m adult's 0.70 m steps against `reference`, bounds enforced.
+WalkCondition main_condition(const gait::Normative& reference);
+// The main condition and the step/stature grid around it: the 1.75 m adult's 0.55 and 0.85 m
+// steps against the slower and faster references (realism weight 0.3), its 0.50 m steps, and the
+// grid's corners, the shortest and the longest steps for the leg (0.50 m for a 2.00 m body, 0.85
+// m for a 1.50 m one); those three for contact and timing only.
+std::vector<WalkCondition> grid_conditions(const gait::Normative& reference,
+                                           const gait::Normative& slower,
+                                           const gait::Normative& faster);
+// Seeds of `count` random starts that must settle into the gait (TuneOptions::recovery_seeds).
+std::vector<std::uint64_t> recovery_seeds(int count);
 
 struct TuneOptions {
   std::vector<WalkCondition> conditions;
@@ -38,8 +53,8 @@ struct TuneOptions {
   double knee_peak_max = 70.0;
   double pelvis_range_min = 0.0;
   double pelvis_range_max = 1e9;
-  // Curve errors (deg RMSE) above which the main condition (realism weight 1) pays steeply: a
-  // little inside the acceptance bounds, so rounding the values keeps them met.
+  // Curve errors (deg RMSE) above which a condition with enforce_bounds (the main one) pays
+  // steeply: a little inside the acceptance bounds, so rounding the values keeps them met.
   double thigh_rmse_max = 5.7;
   double knee_rmse_max = 7.7;
   double ankle_rmse_max = 5.7;
@@ -67,7 +82,7 @@ class SetParameters {
   gait::ControllerSet apply(const std::vector<double>& scaled) const;
   // The set with every value rounded to `significant` significant digits.
   gait::ControllerSet rounded(const std::vector<double>& scaled, int significant) const;
-  // The set with these unscaled values (output velocities, then the inertia).
+  // The set with these unscaled values (output velocities, then the inertia, then the knots).
   gait::ControllerSet with_values(const std::vector<double>& values) const;
 
  private:
@@ -92,10 +107,12 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options,
                  std::string* report = nullptr);
 
 struct TuneResult {
-  gait::ControllerSet set;
-  double cost = 0.0;
-  double start_cost = 0.0;
-  int evaluations = 0;
+  gait::ControllerSet set;  // the best set found (with polishing: its rounded values)
+  double cost = 0.0;        // walk_cost() of `set`
+  // `set` with its values rounded to TuneOptions::digits significant digits: the set to write
+  // out for the artist (with polishing, `set` itself).
+  gait::ControllerSet rounded;
+  int evaluations = 0;  // walk_cost() calls
 };
 
 TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options);

@@ -1,0 +1,55 @@
+// Timing shared by fuzzygait-bench's subcommands: wall seconds, calibrating a work count to a
+// minimum time, running two sides in alternating order, and the median of the repetitions.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+namespace fuzzygait::bench {
+
+using Clock = std::chrono::steady_clock;
+
+// Wall seconds `work()` takes.
+template <class Work>
+double wall_seconds(Work&& work) {
+  const Clock::time_point start = Clock::now();
+  work();
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The count of work units (passes, frames) that takes about `min_seconds`: doubles `count` until
+// `seconds_for(count)` takes at least an eighth of that, then scales it up.
+template <class SecondsFor>
+long calibrate(long count, double min_seconds, SecondsFor&& seconds_for) {
+  for (;;) {
+    const double seconds = seconds_for(count);
+    if (seconds >= min_seconds / 8) {
+      return std::max(
+          1L, static_cast<long>(std::ceil(static_cast<double>(count) * min_seconds / seconds)));
+    }
+    count *= 2;
+  }
+}
+
+// Runs both sides, `a` first in even repetitions and `b` first in odd ones: alternating which
+// side goes first keeps a slow phase of the machine from favouring one.
+template <class A, class B>
+void run_alternating(int repetition, A&& a, B&& b) {
+  if (repetition % 2 == 0) {
+    a();
+    b();
+  } else {
+    b();
+    a();
+  }
+}
+
+inline double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace fuzzygait::bench
