@@ -30,8 +30,11 @@ struct PartitionDegrees {
   T upper_degree = T(0.0);  // degree of term lower + 1 (zero when lower is the last term)
 };
 
+// Always inlined: the walker evaluates eight controllers a time step, and the call (with its
+// result returned through memory) cost about a tenth of a step.
 template <class T>
-PartitionDegrees<T> partition_degrees(const T* knots, std::size_t count, const T& x) {
+[[gnu::always_inline]] inline PartitionDegrees<T> partition_degrees(const T* knots,
+                                                                    std::size_t count, const T& x) {
   PartitionDegrees<T> d;
   if (count < 2 || !(x > knots[0])) return d;
   if (!(x < knots[count - 1])) {

@@ -2,6 +2,7 @@
 // Flat ground, slopes and stairs are all polylines; the walker asks for height and slope.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -27,6 +28,7 @@ class Terrain {
     const std::size_t i = points_.size() == 2 ? 0 : segment(x);
     const Point& a = points_[i];
     const Point& b = points_[i + 1];
+    if (a.y == b.y && !std::isnan(x)) return a.y;  // level: the same value, no division
     return a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x);
   }
   // Slope angle (radians, uphill forward +) of the segment under x.
