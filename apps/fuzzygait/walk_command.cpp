@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "commands.hpp"
@@ -22,7 +23,8 @@ namespace svg = io::svg;
 struct WalkOptions {
   double step = 0.70;
   double stature = 1.75;
-  double thigh = 0.0, shank = 0.0, ankle_height = 0.0, heel = 0.0, ball = 0.0, toe = 0.0;
+  // Lengths given one by one replace the stature's; the rig checks each (zero and negative too).
+  std::optional<double> thigh, shank, ankle_height, heel, ball, toe;
   std::string style = "default";
   std::string controllers;
   int cycles = 10;
@@ -75,7 +77,8 @@ void add_walk_command(CLI::App& app) {
   walk->add_option("--controllers", o->controllers, "Controller set folder (manifest.json + FLL)");
   walk->add_option("--cycles", o->cycles, "Gait cycles to walk after the first (default 10)")
       ->check(CLI::Range(2, 10000));
-  walk->add_option("--duration", o->duration, "Seconds to walk (instead of --cycles)");
+  walk->add_option("--duration", o->duration, "Seconds to walk (instead of --cycles)")
+      ->check(CLI::PositiveNumber);
   walk->add_option("--fps", o->fps, "Frames per second of the files (default 120)")
       ->check(CLI::Range(1.0, 2000.0));
   walk->add_option("--start-pose", o->start_pose, "default, or random:SEED (awkward start)");
@@ -90,12 +93,12 @@ void add_walk_command(CLI::App& app) {
                                         : gait::ControllerSet::load(o->controllers);
     gait::WalkerOptions options;
     options.segments = rig::segments_from_stature(o->stature);
-    if (o->thigh > 0) options.segments.thigh = o->thigh;
-    if (o->shank > 0) options.segments.shank = o->shank;
-    if (o->ankle_height > 0) options.segments.ankle_height = o->ankle_height;
-    if (o->heel > 0) options.segments.heel = o->heel;
-    if (o->ball > 0) options.segments.ball = o->ball;
-    if (o->toe > 0) options.segments.toe = o->toe;
+    options.segments.thigh = o->thigh.value_or(options.segments.thigh);
+    options.segments.shank = o->shank.value_or(options.segments.shank);
+    options.segments.ankle_height = o->ankle_height.value_or(options.segments.ankle_height);
+    options.segments.heel = o->heel.value_or(options.segments.heel);
+    options.segments.ball = o->ball.value_or(options.segments.ball);
+    options.segments.toe = o->toe.value_or(options.segments.toe);
     options.step_length = o->step;
     options.start = parse_start(o->start_pose);
     const terrain::Terrain ground = terrain::Terrain::flat();

@@ -116,6 +116,56 @@ std::array<double, kCycleSamples> resample_cycle(const std::vector<double>& valu
   return out;
 }
 
+std::array<JointSmoothness, 4> joint_smoothness(const Motion& m, std::size_t first) {
+  const std::size_t n = m.frames.size();
+  if (!(m.fps > 0.0)) throw std::invalid_argument("joint smoothness: the frame rate must be > 0");
+  if (first >= n || n - first < 4) {
+    throw std::invalid_argument("joint smoothness: fewer than 4 frames to measure");
+  }
+  const double fps = m.fps;
+  std::array<JointSmoothness, 4> out{};
+  for (std::size_t j = 0; j < out.size(); ++j) {
+    double acceleration_squares = 0.0;
+    double jerk_squares = 0.0;
+    std::size_t accelerations = 0;
+    std::size_t jerks = 0;
+    for (std::size_t side = 0; side < 2; ++side) {
+      auto angle = [&](std::size_t i) {
+        const rig::LegAngles& a = m.frames[i].pose.legs[side];
+        const double v[4] = {a.hip, a.knee, a.ankle, a.toe};
+        return rig::degrees(v[j]);
+      };
+      for (std::size_t i = first + 1; i + 1 < n; ++i) {
+        const double acceleration = (angle(i + 1) - 2.0 * angle(i) + angle(i - 1)) * fps * fps;
+        acceleration_squares += acceleration * acceleration;
+        ++accelerations;
+        if (i + 2 < n) {
+          const double jerk =
+              (angle(i + 2) - 3.0 * angle(i + 1) + 3.0 * angle(i) - angle(i - 1)) * fps * fps * fps;
+          jerk_squares += jerk * jerk;
+          out[j].max_jerk = std::max(out[j].max_jerk, std::abs(jerk));
+          ++jerks;
+        }
+      }
+    }
+    out[j].rms_acceleration = std::sqrt(acceleration_squares / static_cast<double>(accelerations));
+    out[j].rms_jerk = std::sqrt(jerk_squares / static_cast<double>(jerks));
+  }
+  return out;
+}
+
+double cycle_acceleration_rms(const Curve& c, double cycle_time) {
+  constexpr int intervals = kCycleSamples - 1;
+  const double dt = cycle_time / intervals;
+  auto at = [&](int k) { return c.mean[static_cast<std::size_t>((k + intervals) % intervals)]; };
+  double squares = 0.0;
+  for (int k = 0; k < intervals; ++k) {
+    const double acceleration = (at(k + 1) - 2.0 * at(k) + at(k - 1)) / (dt * dt);
+    squares += acceleration * acceleration;
+  }
+  return std::sqrt(squares / intervals);
+}
+
 GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Normative* reference,
                     std::optional<double> commanded_step) {
   const std::size_t n = m.frames.size();
@@ -236,9 +286,15 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
   r.knee_peak = knee_peak.value;
   r.knee_peak_percent = knee_peak.percent;
   if (reference) {
-    r.thigh_score = score(r.thigh, reference->thigh);
-    r.knee_score = score(r.knee, reference->knee);
-    r.ankle_score = score(r.ankle, reference->ankle);
+    auto scored = [&](const Curve& walk, const Curve& people) {
+      JointScore s = score(walk, people);
+      s.acceleration_rms = cycle_acceleration_rms(walk, r.cycle_time);
+      s.reference_acceleration_rms = cycle_acceleration_rms(people, r.cycle_time);
+      return s;
+    };
+    r.thigh_score = scored(r.thigh, reference->thigh);
+    r.knee_score = scored(r.knee, reference->knee);
+    r.ankle_score = scored(r.ankle, reference->ankle);
   }
 
   // Smoothness: how much a joint's velocity changes from one frame to the next, at phase
@@ -266,6 +322,7 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
   std::sort(changes.begin(), changes.end());
   r.typical_velocity_change =
       changes[static_cast<std::size_t>(0.99 * static_cast<double>(changes.size() - 1))];
+  r.smoothness = joint_smoothness(m, first);
   return r;
 }
 
@@ -294,10 +351,21 @@ std::string to_text(const GaitReport& r) {
   row("min toe clearance, swing", r.min_toe_clearance * 1000.0, "mm");
   row("max velocity jump at switch", r.max_velocity_jump, "deg/s per frame");
   row("velocity change, 99th pct", r.typical_velocity_change, "deg/s per frame");
+  const char* joints[4] = {"hip", "knee", "ankle", "toe"};
+  for (std::size_t j = 0; j < 4; ++j) {
+    const JointSmoothness& s = r.smoothness[j];
+    std::snprintf(line, sizeof line,
+                  "%-6s acceleration RMS %8.0f deg/s^2   jerk RMS %9.0f, max %9.0f deg/s^3\n",
+                  joints[j], s.rms_acceleration, s.rms_jerk, s.max_jerk);
+    out += line;
+  }
   auto joint = [&](const char* name, const std::optional<JointScore>& s) {
     if (!s) return;
-    std::snprintf(line, sizeof line, "%-28s %10.3f deg   r %.3f   in 2 SD %.0f %%\n", name, s->rmse,
-                  s->pearson, s->within_2sd);
+    std::snprintf(line, sizeof line,
+                  "%-28s %10.3f deg   r %.3f   in 2 SD %.0f %%   acceleration RMS %.0f (people "
+                  "%.0f) deg/s^2\n",
+                  name, s->rmse, s->pearson, s->within_2sd, s->acceleration_rms,
+                  s->reference_acceleration_rms);
     out += line;
   };
   joint("thigh RMSE", r.thigh_score);
@@ -326,10 +394,20 @@ std::string to_json(const GaitReport& r) {
   j["min_toe_clearance_m"] = r.min_toe_clearance;
   j["max_velocity_jump_deg_per_s"] = r.max_velocity_jump;
   j["typical_velocity_change_deg_per_s"] = r.typical_velocity_change;
+  const char* joints[4] = {"hip", "knee", "ankle", "toe"};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const JointSmoothness& s = r.smoothness[k];
+    j["smoothness"][joints[k]] = {{"rms_acceleration_deg_per_s2", s.rms_acceleration},
+                                  {"rms_jerk_deg_per_s3", s.rms_jerk},
+                                  {"max_jerk_deg_per_s3", s.max_jerk}};
+  }
   auto joint = [&](const char* name, const std::optional<JointScore>& s) {
     if (s)
-      j[name] = {
-          {"rmse_deg", s->rmse}, {"pearson_r", s->pearson}, {"within_2sd_percent", s->within_2sd}};
+      j[name] = {{"rmse_deg", s->rmse},
+                 {"pearson_r", s->pearson},
+                 {"within_2sd_percent", s->within_2sd},
+                 {"acceleration_rms_deg_per_s2", s->acceleration_rms},
+                 {"reference_acceleration_rms_deg_per_s2", s->reference_acceleration_rms}};
   };
   joint("thigh", r.thigh_score);
   joint("knee", r.knee_score);

@@ -186,6 +186,12 @@ terrain::Terrain read_terrain_csv(std::istream& in, std::string_view source) {
     const std::optional<double> x = fuzzy::parse_scalar(cells[0]);
     const std::optional<double> y = fuzzy::parse_scalar(cells[1]);
     if (!x || !y) throw fuzzy::ParseError(where, number, "x and y must be numbers");
+    if (!std::isfinite(*x) || !std::isfinite(*y)) {
+      throw fuzzy::ParseError(where, number, "x and y must be finite");
+    }
+    if (!points.empty() && !(*x > points.back().x)) {
+      throw fuzzy::ParseError(where, number, "x must increase along the profile");
+    }
     points.push_back({*x, *y});
   }
   try {

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "fuzzygait/fuzzy/fll.hpp"
+#include "support/program.hpp"
 #include "support/text.hpp"
 #include "xml_check.hpp"
 
@@ -26,6 +27,8 @@ using fuzzygait::io::plot_engine;
 using fuzzygait::test::check_xml;
 using fuzzygait::test::count;
 using fuzzygait::test::keep;
+using fuzzygait::test::ProgramRun;
+using fuzzygait::test::run_program;
 using fuzzygait::test::read_text;
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -231,29 +234,6 @@ TEST(FuzzyPlot, FuzzyliteExamples) {
 
 // ---------------------------------------------------------------------------------------------
 // The command line.
-
-namespace {
-
-struct ProgramRun {
-  int status;
-  std::string output;
-};
-
-ProgramRun run_program(const std::string& arguments) {
-  const std::string command = std::string("\"") + FUZZYGAIT_CLI + "\" " + arguments + " 2>&1";
-  ProgramRun result{-1, {}};
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  while (const std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe.get())) {
-    result.output.append(buffer.data(), n);
-  }
-  const int status = pclose(pipe.release());
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-}  // namespace
 
 TEST(FuzzyPlotCommand, PlotsTheEaseInOutController) {
   const std::filesystem::path out = std::filesystem::path(::testing::TempDir()) / "ease_cli.svg";

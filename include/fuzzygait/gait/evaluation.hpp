@@ -1,6 +1,7 @@
 // How we measure a walk (DESIGN.md, "How we measure"): realism against normative curves,
-// contact quality, timing, and smoothness at phase switches. Works on a Motion, recorded live or
-// read back from a walk CSV, so every figure comes from a command anyone can run.
+// contact quality, timing, and smoothness (velocity jumps at phase switches, angular acceleration
+// and jerk). Works on a Motion, recorded live or read back from a walk CSV, so every figure
+// comes from a command anyone can run.
 #pragma once
 
 #include <array>
@@ -37,7 +38,28 @@ struct JointScore {
   double rmse = 0.0;        // degrees
   double pearson = 0.0;     // correlation of the mean curves
   double within_2sd = 0.0;  // share of samples inside mean +/- 2 SD, percent
+  // RMS angular acceleration over the mean cycle, deg/s^2, of the walk and of the reference
+  // played at the walk's cycle time: how vigorously the joint moves against how people move it.
+  double acceleration_rms = 0.0;
+  double reference_acceleration_rms = 0.0;
 };
+
+// Smoothness of one joint over a walk, from frame-to-frame finite differences of its angle.
+struct JointSmoothness {
+  double rms_acceleration = 0.0;  // deg/s^2
+  double rms_jerk = 0.0;          // deg/s^3
+  double max_jerk = 0.0;          // deg/s^3, the largest |jerk|
+};
+enum class JointIndex : int { Hip = 0, Knee = 1, Ankle = 2, Toe = 3 };
+
+// Angular acceleration and jerk of the hip, knee, ankle and toe (in that order), both legs
+// pooled, over the frames from `first` on. Throws std::invalid_argument when fewer than four
+// frames remain or the frame rate is not positive.
+std::array<JointSmoothness, 4> joint_smoothness(const Motion& motion, std::size_t first = 0);
+
+// RMS angular acceleration (deg/s^2) of a mean cycle curve played once every `cycle_time`
+// seconds: periodic second differences over the cycle's samples (0 % and 100 % are one point).
+double cycle_acceleration_rms(const Curve& curve, double cycle_time);
 
 struct GaitReport {
   int cycles = 0;               // complete left cycles measured (the first is skipped)
@@ -58,6 +80,8 @@ struct GaitReport {
   double min_toe_clearance = 0.0;      // m, mid-swing (middle 60 % of swing)
   double max_velocity_jump = 0.0;  // deg/s, largest change of a joint's velocity at a phase switch
   double typical_velocity_change = 0.0;  // deg/s, 99th percentile of frame-to-frame changes
+  // Angular acceleration and jerk of hip, knee, ankle and toe over the measured cycles.
+  std::array<JointSmoothness, 4> smoothness{};
   // Mean curves of the left leg over the cycle (degrees): thigh inclination, knee, ankle, toe.
   Curve thigh;
   Curve knee;

@@ -1,0 +1,146 @@
+// The smoothness measures of gait::evaluate: angular acceleration and jerk from the frames, and
+// the RMS acceleration of a mean cycle, checked on motions whose derivatives are known exactly.
+#include "fuzzygait/gait/evaluation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "fuzzygait/io/normative.hpp"
+#include "fuzzygait/terrain/terrain.hpp"
+#include "support/walks.hpp"
+
+namespace fuzzygait {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// `seconds` of frames at `fps` where every joint of both legs follows angle(joint, t) (radians).
+template <class Angle>
+gait::Motion synthetic(double fps, double seconds, Angle angle) {
+  gait::Motion m;
+  m.fps = fps;
+  m.segments = rig::segments_from_stature(1.75);
+  const int frames = static_cast<int>(std::lround(seconds * fps)) + 1;
+  for (int i = 0; i < frames; ++i) {
+    gait::Frame f;
+    f.time = i / fps;
+    for (rig::LegAngles& a : f.pose.legs) {
+      a = {angle(0, f.time), angle(1, f.time), angle(2, f.time), angle(3, f.time)};
+    }
+    m.frames.push_back(f);
+  }
+  return m;
+}
+
+TEST(JointSmoothness, SineHasItsAnalyticAccelerationAndJerk) {
+  // Hip: 20 deg amplitude at 1 Hz; knee: constant velocity; ankle: still; toe: 5 deg at 2 Hz.
+  const double hip_amplitude = 20.0;
+  const double toe_amplitude = 5.0;
+  const gait::Motion m = synthetic(240.0, 4.0, [&](int joint, double t) {
+    switch (joint) {
+      case 0:
+        return rig::radians(hip_amplitude * std::sin(2.0 * kPi * t));
+      case 1:
+        return rig::radians(10.0 + 30.0 * t);
+      case 2:
+        return rig::radians(5.0);
+      default:
+        return rig::radians(toe_amplitude * std::sin(4.0 * kPi * t));
+    }
+  });
+  const auto s = gait::joint_smoothness(m);
+  const double w = 2.0 * kPi;
+  // RMS of A w^2 sin over whole periods: A w^2 / sqrt 2; jerk A w^3 / sqrt 2, peak A w^3.
+  EXPECT_NEAR(s[0].rms_acceleration, hip_amplitude * w * w / std::sqrt(2.0),
+              0.002 * hip_amplitude * w * w);
+  EXPECT_NEAR(s[0].rms_jerk, hip_amplitude * w * w * w / std::sqrt(2.0),
+              0.005 * hip_amplitude * w * w * w);
+  EXPECT_NEAR(s[0].max_jerk, hip_amplitude * w * w * w, 0.005 * hip_amplitude * w * w * w);
+  // A straight line and a constant have none (up to the rounding of degrees).
+  EXPECT_LT(s[1].rms_acceleration, 1e-6);
+  EXPECT_LT(s[1].max_jerk, 1e-3);
+  EXPECT_EQ(s[2].rms_acceleration, 0.0);
+  EXPECT_EQ(s[2].max_jerk, 0.0);
+  // Twice the frequency: four times the acceleration, eight times the jerk per degree.
+  const double w2 = 2.0 * w;
+  EXPECT_NEAR(s[3].rms_acceleration, toe_amplitude * w2 * w2 / std::sqrt(2.0),
+              0.005 * toe_amplitude * w2 * w2);
+  EXPECT_NEAR(s[3].rms_jerk, toe_amplitude * w2 * w2 * w2 / std::sqrt(2.0),
+              0.01 * toe_amplitude * w2 * w2 * w2);
+}
+
+TEST(JointSmoothness, AKinkShowsAsAJerkSpike) {
+  // The knee's velocity jumps from 0 to 100 deg/s at t = 1 s: a smooth walk has no such thing.
+  const gait::Motion m = synthetic(120.0, 2.0, [](int joint, double t) {
+    return joint == 1 ? rig::radians(t > 1.0 ? 100.0 * (t - 1.0) : 0.0) : 0.0;
+  });
+  const auto s = gait::joint_smoothness(m);
+  // One frame carries the whole velocity change: 100 deg/s in 1/120 s.
+  EXPECT_NEAR(s[1].max_jerk, 100.0 * 120.0 * 120.0, 1.0);
+  EXPECT_EQ(s[0].max_jerk, 0.0);
+}
+
+TEST(JointSmoothness, MeasuresFromTheFirstFrameGiven) {
+  const gait::Motion m = synthetic(100.0, 2.0, [](int joint, double t) {
+    return joint == 0 && t < 0.5 ? rig::radians(40.0 * std::sin(20.0 * t)) : 0.0;
+  });
+  EXPECT_GT(gait::joint_smoothness(m)[0].rms_acceleration, 1000.0);
+  EXPECT_EQ(gait::joint_smoothness(m, 60)[0].rms_acceleration, 0.0);
+}
+
+TEST(JointSmoothness, RefusesTooFewFramesAndNoFrameRate) {
+  gait::Motion m = synthetic(60.0, 0.05, [](int, double) { return 0.0; });  // 4 frames
+  EXPECT_NO_THROW(gait::joint_smoothness(m));
+  EXPECT_THROW(gait::joint_smoothness(m, 1), std::invalid_argument);
+  m.fps = 0.0;
+  EXPECT_THROW(gait::joint_smoothness(m), std::invalid_argument);
+}
+
+TEST(CycleAcceleration, SineOverTheCycle) {
+  gait::Curve c;
+  for (int k = 0; k < gait::kCycleSamples; ++k) {
+    c.mean[static_cast<std::size_t>(k)] =
+        30.0 * std::sin(2.0 * kPi * k / (gait::kCycleSamples - 1));
+  }
+  const double cycle = 1.1;
+  const double w = 2.0 * kPi / cycle;
+  // Second differences of 50 samples a period fall 0.13 % short of the derivative.
+  EXPECT_NEAR(gait::cycle_acceleration_rms(c, cycle), 30.0 * w * w / std::sqrt(2.0),
+              0.003 * 30.0 * w * w);
+  // Played twice as fast, four times the acceleration.
+  EXPECT_NEAR(gait::cycle_acceleration_rms(c, cycle / 2.0),
+              4.0 * gait::cycle_acceleration_rms(c, cycle), 1e-9);
+}
+
+TEST(CycleAcceleration, TheWalkReportsItBesidePeoples) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::Walker walker = test::make_walker(ground);
+  const gait::Motion motion = gait::record(walker, 12.0, 120.0);
+  const gait::Normative reference = io::load_normative("schwartz2008_free");
+  const gait::GaitReport r = gait::evaluate(motion, ground, &reference, 0.70);
+  ASSERT_TRUE(r.knee_score.has_value());
+  EXPECT_DOUBLE_EQ(r.knee_score->acceleration_rms,
+                   gait::cycle_acceleration_rms(r.knee, r.cycle_time));
+  EXPECT_DOUBLE_EQ(r.knee_score->reference_acceleration_rms,
+                   gait::cycle_acceleration_rms(reference.knee, r.cycle_time));
+  // People's mean knee curve at this cadence: about 1,900 deg/s^2 (Schwartz 2008, free speed).
+  EXPECT_GT(r.knee_score->reference_acceleration_rms, 1500.0);
+  EXPECT_LT(r.knee_score->reference_acceleration_rms, 2500.0);
+  // The frame-by-frame figures are there for every joint, finite and non-zero.
+  for (const gait::JointSmoothness& s : r.smoothness) {
+    EXPECT_TRUE(std::isfinite(s.rms_jerk));
+    EXPECT_GT(s.rms_acceleration, 0.0);
+    EXPECT_GE(s.max_jerk, s.rms_jerk);
+  }
+  const std::string text = gait::to_text(r);
+  EXPECT_NE(text.find("knee   acceleration RMS"), std::string::npos) << text;
+  const std::string json = gait::to_json(r);
+  EXPECT_NE(json.find("\"rms_jerk_deg_per_s3\""), std::string::npos);
+  EXPECT_NE(json.find("\"reference_acceleration_rms_deg_per_s2\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fuzzygait
