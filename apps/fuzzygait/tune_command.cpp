@@ -61,6 +61,10 @@ void add_tune_command(CLI::App& app) {
   tune->add_option("--pelvis-range", o->pelvis_range,
                    "Wanted vertical travel of the pelvis over a cycle, mm (default any)")
       ->expected(2);
+  tune->add_option("--acceleration-ratio-max", t.acceleration_ratio_max,
+                   "How many times people's RMS angular acceleration the thigh and knee may have "
+                   "on the main walk before it costs (default: no limit)")
+      ->check(CLI::PositiveNumber);
   tune->add_option("--minimum-inertia", t.minimum_inertia,
                    "Smallest inertia time constant the tuning may choose, s (default 0.02)");
   tune->add_option("--name", o->name, "Name written into the tuned set's manifest (a style)");

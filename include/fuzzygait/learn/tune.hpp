@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,10 @@ struct TuneOptions {
   double thigh_rmse_max = 5.7;
   double knee_rmse_max = 7.7;
   double ankle_rmse_max = 5.7;
+  // RMS angular acceleration of the thigh's and knee's mean cycles, as a multiple of the
+  // reference's at the same cadence, above which a condition with enforce_bounds pays: how much
+  // snappier than people the joints may move (their ease in and out). No limit by default.
+  double acceleration_ratio_max = std::numeric_limits<double>::infinity();
   double fps = 120.0;
   int generations = 200;
   // Then this many generations on the values rounded to `digits` significant digits, the ones

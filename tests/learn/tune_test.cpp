@@ -1,0 +1,176 @@
+// Learning: CMA-ES on functions whose minimum is known, the set's parameters (round trip,
+// rounding), the penalty for words that stop meaning what they say, the walk cost's terms, and a
+// short tune that must not make the set worse.
+#include "fuzzygait/learn/tune.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/io/normative.hpp"
+#include "fuzzygait/learn/cmaes.hpp"
+#include "support/walks.hpp"
+
+namespace fuzzygait {
+namespace {
+
+double sphere(const std::vector<double>& x) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    s += (x[i] - 0.5 * static_cast<double>(i)) * (x[i] - 0.5 * static_cast<double>(i));
+  return s;
+}
+
+double rosenbrock(const std::vector<double>& x) {
+  double s = 0.0;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    s += 100.0 * std::pow(x[i + 1] - x[i] * x[i], 2) + std::pow(1.0 - x[i], 2);
+  }
+  return s;
+}
+
+TEST(Cmaes, FindsTheMinimumOfASphere) {
+  learn::CmaesOptions o;
+  o.max_generations = 300;
+  o.sigma = 1.0;
+  const learn::CmaesResult r = learn::minimize(sphere, std::vector<double>(6, 3.0), o);
+  EXPECT_LT(r.best_cost, 1e-10);
+  for (std::size_t i = 0; i < r.best.size(); ++i)
+    EXPECT_NEAR(r.best[i], 0.5 * static_cast<double>(i), 1e-4);
+  EXPECT_GT(r.evaluations, 0);
+}
+
+TEST(Cmaes, FollowsRosenbrocksValley) {
+  learn::CmaesOptions o;
+  o.max_generations = 2000;
+  o.sigma = 0.5;
+  const learn::CmaesResult r = learn::minimize(rosenbrock, {-1.2, 1.0, -0.5, 0.8}, o);
+  EXPECT_LT(r.best_cost, 1e-8);
+  for (double v : r.best)
+    EXPECT_NEAR(v, 1.0, 1e-3);
+}
+
+TEST(Cmaes, SameSeedSameResultWhateverTheThreads) {
+  learn::CmaesOptions o;
+  o.max_generations = 40;
+  o.seed = 9;
+  const learn::CmaesResult a = learn::minimize(rosenbrock, {0.0, 0.0, 0.0}, o);
+  o.threads = 2;
+  const learn::CmaesResult b = learn::minimize(rosenbrock, {0.0, 0.0, 0.0}, o);
+  EXPECT_EQ(a.best, b.best);
+  EXPECT_EQ(a.best_cost, b.best_cost);
+  o.seed = 10;
+  const learn::CmaesResult c = learn::minimize(rosenbrock, {0.0, 0.0, 0.0}, o);
+  EXPECT_NE(a.best, c.best);
+}
+
+TEST(Cmaes, StopsAtTheTarget) {
+  learn::CmaesOptions o;
+  o.max_generations = 1000;
+  o.target = 1e-2;
+  const learn::CmaesResult r = learn::minimize(sphere, std::vector<double>(3, 2.0), o);
+  EXPECT_LT(r.best_cost, 1e-2);
+  EXPECT_GT(r.best_cost, 1e-8);  // stopped early, not run to the end
+}
+
+// Every controller's output for a grid of metric values.
+std::vector<double> outputs(const gait::ControllerSet& set) {
+  std::vector<double> out;
+  for (const gait::Controller& c : set.controllers) {
+    fuzzy::Workspace w = c.make_workspace();
+    for (double delta = -1.0; delta <= 1.5; delta += 0.125) {
+      for (double angle = -20.0; angle <= 70.0; angle += 10.0) {
+        gait::MetricValues m{};
+        m.fill(angle);
+        m[static_cast<std::size_t>(gait::Metric::Delta)] = delta;
+        m[static_cast<std::size_t>(gait::Metric::OtherDelta)] = -delta;
+        out.push_back(c.evaluate(m, w));
+      }
+    }
+  }
+  return out;
+}
+
+TEST(SetParameters, ApplyingTheStartGivesTheSameSet) {
+  const gait::ControllerSet& base = test::default_set();
+  const learn::SetParameters p(base);
+  EXPECT_GT(p.size(), 30u);
+  // The same values through the parameters' scaling: equal but for the last bits.
+  const gait::ControllerSet same = p.apply(p.values());
+  const std::vector<double> a = outputs(same);
+  const std::vector<double> b = outputs(base);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    ASSERT_NEAR(a[i], b[i], 1e-9 * (1.0 + std::abs(b[i]))) << i;
+  EXPECT_NEAR(same.inertia, base.inertia, 1e-15);
+  // The shipped values have three significant digits: rounding keeps them.
+  EXPECT_EQ(outputs(p.rounded(p.values(), 3)), outputs(base));
+  // A change moves the outputs, and rounding to one digit moves them too.
+  std::vector<double> v = p.values();
+  v[0] += 0.5;
+  EXPECT_NE(outputs(p.apply(v)), outputs(base));
+  EXPECT_NE(outputs(p.rounded(p.values(), 1)), outputs(base));
+}
+
+TEST(SetParameters, InertiaNeverGoesBelowItsMinimum) {
+  const learn::SetParameters p(test::default_set(), 0.02);
+  std::vector<double> v = p.values();
+  for (double& x : v)
+    x -= 50.0;  // far below anything sensible
+  EXPECT_GE(p.apply(v).inertia, 0.02);
+}
+
+TEST(WordPenalty, ShippedSetsKeepTheirWordsAndABrokenWordCosts) {
+  for (const std::string& name : gait::ControllerSet::builtin_names()) {
+    EXPECT_LT(learn::word_penalty(gait::ControllerSet::builtin(name)), 1.0) << name;
+  }
+  // Every value three times as large: a "hold" that moves, a "slow" as fast as a "fast".
+  const gait::ControllerSet& base = test::default_set();
+  const learn::SetParameters p(base);
+  std::vector<double> v = p.values();
+  for (double& x : v)
+    x *= 3.0;
+  EXPECT_GT(learn::word_penalty(p.apply(v)), learn::word_penalty(base) + 1.0);
+}
+
+TEST(WalkCost, TheAccelerationLimitCostsOnlyWhenSet) {
+  const gait::Normative free = io::load_normative("schwartz2008_free");
+  learn::TuneOptions o;
+  o.conditions = {learn::main_condition(free)};
+  std::string report;
+  const double unlimited = learn::walk_cost(test::default_set(), o, &report);
+  EXPECT_NE(report.find("acceleration x"), std::string::npos) << report;
+  o.acceleration_ratio_max = 100.0;
+  EXPECT_EQ(learn::walk_cost(test::default_set(), o), unlimited);
+  // The default's thigh and knee move about 3.9 and 3.0 times as hard as people's: a limit of
+  // 1 costs 10 per unit over, about 49.
+  o.acceleration_ratio_max = 1.0;
+  const double limited = learn::walk_cost(test::default_set(), o);
+  EXPECT_GT(limited - unlimited, 40.0);
+  EXPECT_LT(limited - unlimited, 60.0);
+}
+
+TEST(Tune, AShortTuneNeverEndsWorseThanItsStart) {
+  const gait::Normative free = io::load_normative("schwartz2008_free");
+  learn::TuneOptions o;
+  o.conditions = {learn::main_condition(free)};
+  o.generations = 4;
+  o.threads = 2;
+  o.seed = 3;
+  o.sigma = 0.05;
+  const double start = learn::walk_cost(test::default_set(), o);
+  const learn::TuneResult r = learn::tune(test::default_set(), o);
+  EXPECT_LE(r.cost, start);
+  EXPECT_EQ(r.cost, learn::walk_cost(r.set, o));
+  EXPECT_GT(r.evaluations, 4);
+  // Deterministic for a seed.
+  const learn::TuneResult again = learn::tune(test::default_set(), o);
+  EXPECT_EQ(again.cost, r.cost);
+  EXPECT_EQ(outputs(again.rounded), outputs(r.rounded));
+}
+
+}  // namespace
+}  // namespace fuzzygait
