@@ -456,13 +456,53 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
   }
 }
 
-// How deep the heel, ball or toe tip is below the ground (negative when all are above).
-double Walker::foot_depth(const LegPoints& p) const {
-  return std::max({terrain_->height(p.heel.x) - p.heel.y, terrain_->height(p.ball.x) - p.ball.y,
-                   terrain_->height(p.tip.x) - p.tip.y});
+// Height of the carrying leg's knee above the ground, its foot on its anchor.
+double Walker::knee_gap(int leg) {
+  const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const LegPoints p = leg_points(leg, {0.0, 0.0}, l.angles);
+  const Point c = contact_point(p, l.phase);
+  const Point knee{l.anchor.x + (p.knee.x - c.x), l.anchor.y + (p.knee.y - c.y)};
+  return knee.y - terrain_->height(knee.x);
 }
 
-void Walker::clear_ground(int leg, double max_change, double margin) {
+// A carrying leg folds no further once its knee reaches the ground (only after an awkward start):
+// its knee flexion goes back towards `known_good` just as far as needed, a flat foot staying flat.
+// The other leg, if swinging, then steps ahead of the body to take the weight, even where its
+// target was behind it (the kneeling leg's foot far behind the hip).
+void Walker::keep_knee_up(int leg, double known_good) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  if (knee_gap(leg) >= 0.0) return;
+  const double slope = terrain_->slope(l.anchor.x);
+  auto gap = [&](double knee) {
+    l.angles.knee = knee;
+    if (l.phase == Phase::Flat) l.angles.ankle = slope - shank_of(state_.pelvis_tilt, l.angles);
+    return knee_gap(leg);
+  };
+  double bad = l.angles.knee;
+  double good = known_good;
+  if (gap(good) >= 0.0) {
+    for (int i = 0; i < 40; ++i) {
+      const double mid = 0.5 * (bad + good);
+      (gap(mid) >= 0.0 ? good : bad) = mid;
+    }
+  }
+  gap(good);
+  if (l.phase == Phase::Ball) l.angles.toe = slope - foot_of(state_.pelvis_tilt, l.angles);
+  LegState& other = state_.legs[static_cast<std::size_t>(1 - leg)];
+  if (other.phase == Phase::Swing) {
+    other.target_x = std::max(other.target_x, state_.pelvis.x + 0.5 * step_length_);
+  }
+}
+
+// How deep the heel, ball or (with_tip) toe tip is below the ground (negative when all are
+// above).
+double Walker::foot_depth(const LegPoints& p, bool with_tip) const {
+  const double sole =
+      std::max(terrain_->height(p.heel.x) - p.heel.y, terrain_->height(p.ball.x) - p.ball.y);
+  return with_tip ? std::max(sole, terrain_->height(p.tip.x) - p.tip.y) : sole;
+}
+
+void Walker::clear_ground(int leg, double max_change, double margin, bool with_tip) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
   const double tilt = state_.pelvis_tilt;
   // A knee that would touch the ground (a deep crouch after an awkward start) swings the thigh
@@ -489,7 +529,7 @@ void Walker::clear_ground(int leg, double max_change, double margin) {
   auto depth = [&](double knee) {
     rig::LegAngles a = l.angles;
     a.knee = knee;
-    return foot_depth(leg_points(leg, state_.pelvis, a)) + margin;
+    return foot_depth(leg_points(leg, state_.pelvis, a), with_tip) + margin;
   };
   if (depth(high) > 0.0) {  // cannot clear in one step: fold as far as allowed
     l.angles.knee = high;
@@ -596,6 +636,7 @@ void Walker::step(double h) {
     // The leg planted first carries the pelvis, through double support too: the chain grows
     // from its foot, so a planted foot never slides and the body's motion stays continuous.
     settle_foot(state_.lead, commanded[static_cast<std::size_t>(state_.lead)]);
+    keep_knee_up(state_.lead, previous[static_cast<std::size_t>(state_.lead)].knee);
     place_pelvis(state_.lead);
   }
   for (int leg = 0; leg < 2; ++leg) {
@@ -648,12 +689,12 @@ void Walker::step(double h) {
     break;
   }
   // A foot that has just lifted off can sit a hair below the ground once the other foot takes
-  // the pelvis: lift it at once.
+  // the pelvis: lift it at once. (Its toe tip is left to the toes, which bend up below.)
   for (int leg = 0; leg < 2; ++leg) {
     const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
     if (l.phase == Phase::Swing && state_.lead >= 0 &&
-        foot_depth(leg_points(leg, state_.pelvis, l.angles)) > 0.0) {
-      clear_ground(leg, limits_.maximum.knee, 0.0);
+        foot_depth(leg_points(leg, state_.pelvis, l.angles), false) > 0.0) {
+      clear_ground(leg, limits_.maximum.knee, 0.0, false);
     }
   }
   // Toes never dip below the ground: they bend up where the ground holds them.

@@ -113,8 +113,9 @@ std::array<double, 8> leg_angles(const gait::WalkerState& state) {
   return out;
 }
 
-// 500 seeded random starts within the joint limits: no NaN, nothing below the ground, and steady
-// steps of the commanded length from the fourth step on (the first touchdown is not a step).
+// 500 seeded random starts within the joint limits: no NaN, nothing below the ground at any time
+// step, joints within their limits (but for a known excess, below), and steady steps of the
+// commanded length from the fourth step on (the first touchdown is not a step).
 TEST(Acceptance, RecoversFromAwkwardStarts) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   const rig::JointLimits limits{};
@@ -126,6 +127,10 @@ TEST(Acceptance, RecoversFromAwkwardStarts) {
       limits.maximum.hip, limits.maximum.knee, limits.maximum.ankle, limits.maximum.toe};
   const std::array<double, 8> default_start = leg_angles(make_walker(ground).state());
   constexpr std::uint64_t kSeeds = 500;
+  const double walker_time_step = gait::WalkerOptions{}.time_step;
+  // The largest excess (radians) past the hip and ankle limits and below a straight knee, and past
+  // the knee's flexion limit.
+  std::array<double, 2> worst_excess{};
   constexpr int kReported = 5;
   std::set<std::array<double, 8>> starts;
   int outside_limits = 0;
@@ -150,14 +155,27 @@ TEST(Acceptance, RecoversFromAwkwardStarts) {
     }
     std::vector<double> strikes;
     double last_strike_time = -1.0;
-    for (int frame = 0; frame < 8 * 60; ++frame) {
-      walker.advance(1.0 / 60.0);
+    // Every time step, not only every frame: what happens between frames shows in a game too.
+    const double h = walker_time_step;
+    for (int i = 0; i < static_cast<int>(std::lround(8.0 / h)); ++i) {
+      walker.advance(h);
       for (rig::Side side : rig::kSides) {
         const rig::LegPoints p = walker.points(side);
         for (const rig::Point& q : {p.hip, p.knee, p.ankle, p.heel, p.ball, p.tip}) {
           ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y)) << "seed " << seed;
-          ASSERT_GE(q.y, ground.height(q.x) - 1e-6) << "seed " << seed << " frame " << frame;
+          ASSERT_GE(q.y, ground.height(q.x) - 1e-6)
+              << "seed " << seed << " at " << walker.time() << " s";
         }
+        const rig::LegAngles& a =
+            walker.state().legs[static_cast<std::size_t>(rig::index(side))].angles;
+        // Known gap: closing the chain of a foot put down from a deep crouch can fold its knee
+        // up to 12 deg past the limit (16 of these 500 starts); held here so it cannot grow
+        // unnoticed. The toes follow the ground and are not checked.
+        worst_excess[0] =
+            std::max({worst_excess[0], a.hip - limits.maximum.hip, limits.minimum.hip - a.hip,
+                      limits.minimum.knee - a.knee, a.ankle - limits.maximum.ankle,
+                      limits.minimum.ankle - a.ankle});
+        worst_excess[1] = std::max(worst_excess[1], a.knee - limits.maximum.knee);
       }
       for (const gait::EventRecord& e : walker.events()) {
         // Both feet touching down together (landing from a fall, or replanting both feet) is
@@ -179,6 +197,8 @@ TEST(Acceptance, RecoversFromAwkwardStarts) {
     }
   }
   EXPECT_EQ(outside_limits, 0) << "start angles outside the joint limits";
+  EXPECT_LT(rig::degrees(worst_excess[0]), 0.5) << "deg past the hip, knee or ankle limits";
+  EXPECT_LT(rig::degrees(worst_excess[1]), 12.0) << "deg past the knee's flexion limit";
   EXPECT_EQ(unsettled, 0) << "of " << kSeeds << " starts did not settle";
   // Seeds give different starts (hashed apart: nearby seeds do not walk the same sequence).
   EXPECT_GE(starts.size(), 490u) << "distinct starts of " << kSeeds;

@@ -18,6 +18,9 @@
 //                    leg lifts off (toe off) and the new leg carries the pelvis.
 //   joint velocity   follows the controller's command with the set's inertia time constant, so
 //                    velocities never jump, even where a phase hands a joint to another controller.
+//   crouched starts  a carrying leg whose knee reaches the ground folds no further, and the
+//                    swinging leg then aims at least half a step ahead of the hip (only awkward
+//                    starts crouch that deep).
 #pragma once
 
 #include <array>
@@ -141,8 +144,10 @@ class Walker {
   bool close_chain(int leg);
   void settle_foot(int leg, const rig::LegAngles& commanded);
   double stance_target() const;
-  double foot_depth(const rig::LegPoints& points) const;
-  void clear_ground(int leg, double max_change, double margin);
+  double foot_depth(const rig::LegPoints& points, bool with_tip = true) const;
+  double knee_gap(int leg);
+  void keep_knee_up(int leg, double known_good);
+  void clear_ground(int leg, double max_change, double margin, bool with_tip = true);
   void update_metrics(int leg, const rig::LegPoints& points, MetricValues& metrics);
   rig::LegPoints leg_points(int leg, rig::Point hip, const rig::LegAngles& angles);
 
