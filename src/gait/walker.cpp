@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../rig/trigonometry.hpp"
 #include "splitmix64.hpp"
 
 namespace fuzzygait::gait {
@@ -15,6 +16,10 @@ namespace {
 using rig::LegAngles;
 using rig::LegPoints;
 using rig::Point;
+using rig::detail::arccos;
+using rig::detail::arcsin;
+using rig::detail::arctan2;
+using rig::detail::sin_cos;
 
 constexpr double kGravity = 9.81;
 constexpr std::size_t kEventCapacity = 64;
@@ -38,7 +43,7 @@ double foot_of(double tilt, const LegAngles& a) {
 
 // Inclination of the line from `from` to `to`, from the downward vertical, forward positive.
 double inclination(Point from, Point to) {
-  return std::atan2(to.x - from.x, from.y - to.y);
+  return arctan2(to.x - from.x, from.y - to.y);
 }
 
 // The paper's delta: -1 at the start angle, 0 when the thigh is vertical, +1 at the end angle
@@ -167,16 +172,17 @@ inline LegPoints Walker::leg_points(int leg, Point hip, const LegAngles& angles)
 }
 
 void Walker::LegTrig::update(const rig::LegOrientation& o) {
-  auto segment = [](double angle, double& known, double& sin, double& cos) {
-    if (same_bits(angle, known)) return;
-    known = angle;
-    sin = std::sin(angle);
-    cos = std::cos(angle);
-  };
-  segment(o.thigh, orientation.thigh, trig.thigh_sin, trig.thigh_cos);
-  segment(o.shank, orientation.shank, trig.shank_sin, trig.shank_cos);
-  segment(o.foot, orientation.foot, trig.foot_sin, trig.foot_cos);
-  segment(o.toes, orientation.toes, trig.toes_sin, trig.toes_cos);
+  if (same_bits(o.thigh, orientation.thigh) && same_bits(o.shank, orientation.shank) &&
+      same_bits(o.foot, orientation.foot) && same_bits(o.toes, orientation.toes)) {
+    return;
+  }
+  // All four at once (one vectorised kernel); an unchanged segment gets the same bits again.
+  orientation = o;
+  const double angles[4] = {o.thigh, o.shank, o.foot, o.toes};
+  double sin[4];
+  double cos[4];
+  sin_cos(angles, sin, cos);
+  trig = {sin[0], cos[0], sin[1], cos[1], sin[2], cos[2], sin[3], cos[3]};
 }
 
 void Walker::record(rig::Side side, Event event, Point where) {
@@ -186,7 +192,7 @@ void Walker::record(rig::Side side, Event event, Point where) {
 
 double Walker::stance_target() const {
   const double reach = segments_.thigh + segments_.shank;
-  return -std::asin(std::clamp(0.5 * step_length_ / reach, 0.0, 0.95));
+  return -arcsin(std::clamp(0.5 * step_length_ / reach, 0.0, 0.95));
 }
 
 void Walker::start(const StartPose& start_pose) {
@@ -372,32 +378,38 @@ bool Walker::close_chain(int leg) {
   double wn = -s.shank;
   if (l.phase == Phase::Flat) {
     // The ankle sits above the planted heel.
-    target = {l.anchor.x + s.heel * std::cos(slope) - s.ankle_height * std::sin(slope),
-              l.anchor.y + s.heel * std::sin(slope) + s.ankle_height * std::cos(slope)};
+    const rig::detail::SinCos ground = sin_cos(slope);
+    target = {l.anchor.x + s.heel * ground.cos - s.ankle_height * ground.sin,
+              l.anchor.y + s.heel * ground.sin + s.ankle_height * ground.cos};
   } else {
     const double cf = l.phase == Phase::Ball ? s.ball : -s.heel;
     const double cu = -s.ankle_height;
-    const double ca = std::cos(l.angles.ankle);
-    const double sa = std::sin(l.angles.ankle);
+    const rig::detail::SinCos ankle = sin_cos(l.angles.ankle);
+    const double ca = ankle.cos;
+    const double sa = ankle.sin;
     we = cf * ca - cu * sa;
     wn = cf * sa + cu * ca - s.shank;
   }
-  const double lower = std::hypot(we, wn);
+  const double lower = std::sqrt(we * we + wn * wn);
   const Point hip = state_.pelvis;
   const double dx = target.x - hip.x;
   const double dy = target.y - hip.y;
-  const double distance = std::hypot(dx, dy);
+  const double distance = std::sqrt(dx * dx + dy * dy);
   if (distance > s.thigh + lower - 1e-9) return false;
   const double d = std::max(distance, std::abs(s.thigh - lower) + 1e-9);
   const double cos_hip =
       std::clamp((s.thigh * s.thigh + d * d - lower * lower) / (2.0 * s.thigh * d), -1.0, 1.0);
-  const double thigh = inclination(hip, target) + std::acos(cos_hip);
-  const Point knee{hip.x + s.thigh * std::sin(thigh), hip.y - s.thigh * std::cos(thigh)};
+  const double thigh = inclination(hip, target) + arccos(cos_hip);
+  const rig::detail::SinCos t = sin_cos(thigh);
+  const Point knee{hip.x + s.thigh * t.sin, hip.y - s.thigh * t.cos};
   // The knee-to-contact vector is (we, wn) in the shank's frame, rotated by the shank's
   // inclination.
-  const double shank_inclination =
-      std::remainder(std::atan2(target.y - knee.y, target.x - knee.x) - std::atan2(wn, we),
-                     2.0 * std::numbers::pi);
+  double shank_inclination = arctan2(target.y - knee.y, target.x - knee.x) - arctan2(wn, we);
+  if (shank_inclination > std::numbers::pi) {
+    shank_inclination -= 2.0 * std::numbers::pi;
+  } else if (shank_inclination < -std::numbers::pi) {
+    shank_inclination += 2.0 * std::numbers::pi;
+  }
   // The knee cannot bend backwards: a chain that needs it is out of reach.
   if (thigh - shank_inclination < -1e-9) return false;
   l.angles.hip = thigh + tilt;
@@ -431,8 +443,8 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
         // The controller lets the ankle dorsiflex slower than the shank rolls over the foot:
         // the heel lifts (the calf holds the shin back).
         l.phase = Phase::Ball;
-        l.anchor = {l.anchor.x + sole_length * std::cos(slope),
-                    l.anchor.y + sole_length * std::sin(slope)};
+        const rig::detail::SinCos ground = sin_cos(slope);
+        l.anchor = {l.anchor.x + sole_length * ground.cos, l.anchor.y + sole_length * ground.sin};
         l.angles.ankle = commanded.ankle;
         record(static_cast<rig::Side>(leg), Event::HeelOff, l.anchor);
       } else {
@@ -445,8 +457,8 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
         // The heel came back down.
         l.phase = Phase::Flat;
         l.angles.ankle = slope - shank_of(tilt, l.angles);
-        l.anchor = {l.anchor.x - sole_length * std::cos(slope),
-                    l.anchor.y - sole_length * std::sin(slope)};
+        const rig::detail::SinCos ground = sin_cos(slope);
+        l.anchor = {l.anchor.x - sole_length * ground.cos, l.anchor.y - sole_length * ground.sin};
         record(static_cast<rig::Side>(leg), Event::FootFlat, l.anchor);
       }
       l.angles.toe = slope - foot_of(tilt, l.angles);
@@ -704,7 +716,7 @@ void Walker::step(double h) {
     const double ground = terrain_->height(p.tip.x);
     if (p.tip.y < ground) {
       const double rise = std::clamp((ground - p.ball.y) / segments_.toe, -1.0, 1.0);
-      l.angles.toe = std::max(l.angles.toe, std::asin(rise) - foot_of(tilt, l.angles));
+      l.angles.toe = std::max(l.angles.toe, arcsin(rise) - foot_of(tilt, l.angles));
     }
   }
   for (int leg = 0; leg < 2; ++leg) {

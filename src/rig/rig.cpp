@@ -5,6 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "trigonometry.hpp"
+
 namespace fuzzygait::rig {
 
 Segments segments_from_stature(double stature) {
@@ -40,15 +42,19 @@ void validate(const Segments& s) {
 }
 
 LegTrig trig(const LegOrientation& o) {
+  const double angles[4] = {o.thigh, o.shank, o.foot, o.toes};
+  double sin[4];
+  double cos[4];
+  detail::sin_cos(angles, sin, cos);
   LegTrig t;
-  t.thigh_sin = std::sin(o.thigh);
-  t.thigh_cos = std::cos(o.thigh);
-  t.shank_sin = std::sin(o.shank);
-  t.shank_cos = std::cos(o.shank);
-  t.foot_sin = std::sin(o.foot);
-  t.foot_cos = std::cos(o.foot);
-  t.toes_sin = std::sin(o.toes);
-  t.toes_cos = std::cos(o.toes);
+  t.thigh_sin = sin[0];
+  t.thigh_cos = cos[0];
+  t.shank_sin = sin[1];
+  t.shank_cos = cos[1];
+  t.foot_sin = sin[2];
+  t.foot_cos = cos[2];
+  t.toes_sin = sin[3];
+  t.toes_cos = cos[3];
   return t;
 }
 
