@@ -161,8 +161,8 @@ bool same_bits(double a, double b) {
 }
 }  // namespace
 
-// rig::forward_kinematics with the walker's tilt: the same points, with each segment's sine and
-// cosine computed only when its orientation changed (bit for bit) since the leg was last placed.
+// rig::forward_kinematics with the walker's tilt: the same points, with the segments' sines and
+// cosines computed only when an orientation changed (bit for bit) since the leg was last placed.
 // Inline, so that a caller computes only the points it reads.
 inline LegPoints Walker::leg_points(int leg, Point hip, const LegAngles& angles) {
   const rig::LegOrientation o = rig::orientation(state_.pelvis_tilt, angles);
@@ -178,11 +178,7 @@ void Walker::LegTrig::update(const rig::LegOrientation& o) {
   }
   // All four at once (one vectorised kernel); an unchanged segment gets the same bits again.
   orientation = o;
-  const double angles[4] = {o.thigh, o.shank, o.foot, o.toes};
-  double sin[4];
-  double cos[4];
-  sin_cos(angles, sin, cos);
-  trig = {sin[0], cos[0], sin[1], cos[1], sin[2], cos[2], sin[3], cos[3]};
+  trig = rig::trig(o);
 }
 
 void Walker::record(rig::Side side, Event event, Point where) {

@@ -168,7 +168,7 @@ class Walker {
   struct LegTrig {
     rig::LegOrientation orientation;  // zero, as rig::LegTrig's defaults
     rig::LegTrig trig;
-    void update(const rig::LegOrientation& o);  // the segments whose orientation changed
+    void update(const rig::LegOrientation& o);  // all four, when any orientation changed
   };
   std::array<LegTrig, 2> trig_{};
   std::vector<EventRecord> events_;
