@@ -474,7 +474,8 @@ double Walker::knee_gap(int leg) {
 }
 
 // A carrying leg folds no further once its knee reaches the ground (only after an awkward start):
-// its knee flexion goes back towards `known_good` just as far as needed, a flat foot staying flat.
+// its knee flexion goes back towards `known_good` (or straight) just as far as needed, a flat foot
+// staying flat.
 // The other leg, if swinging, then steps ahead of the body to take the weight, even where its
 // target was behind it (the kneeling leg's foot far behind the hip).
 void Walker::keep_knee_up(int leg, double known_good) {
@@ -488,6 +489,8 @@ void Walker::keep_knee_up(int leg, double known_good) {
   };
   double bad = l.angles.knee;
   double good = known_good;
+  // Where the ankle moved too, the previous flexion may no longer clear: a straighter knee does.
+  if (gap(good) < 0.0) good = limits_.minimum.knee;
   if (gap(good) >= 0.0) {
     for (int i = 0; i < 40; ++i) {
       const double mid = 0.5 * (bad + good);

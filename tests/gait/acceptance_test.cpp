@@ -204,6 +204,32 @@ TEST(Acceptance, RecoversFromAwkwardStarts) {
   EXPECT_GE(starts.size(), 490u) << "distinct starts of " << kSeeds;
 }
 
+// The styles from the same 500 awkward starts: finite and above the ground at every time step.
+TEST(Acceptance, StylesStayAboveTheGroundFromAwkwardStarts) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  for (const char* name : {"energetic", "heavy", "cautious"}) {
+    const gait::ControllerSet set = gait::ControllerSet::builtin(name);
+    for (std::uint64_t seed = 0; seed < 500; ++seed) {
+      gait::StartPose start;
+      start.random = true;
+      start.seed = seed;
+      gait::Walker walker = make_walker(ground, 0.70, 1.75, start, set);
+      const double h = gait::WalkerOptions{}.time_step;
+      for (int i = 0; i < static_cast<int>(std::lround(8.0 / h)); ++i) {
+        walker.advance(h);
+        for (rig::Side side : rig::kSides) {
+          const rig::LegPoints p = walker.points(side);
+          for (const rig::Point& q : {p.hip, p.knee, p.ankle, p.heel, p.ball, p.tip}) {
+            ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y)) << name << " seed " << seed;
+            ASSERT_GE(q.y, ground.height(q.x) - 1e-6)
+                << name << " seed " << seed << " at " << walker.time() << " s";
+          }
+        }
+      }
+    }
+  }
+}
+
 // A style is only controller data: walked with the same options as the default, it must differ
 // from it the way an animator expects, by a margin people can see.
 struct StyleFigures {
