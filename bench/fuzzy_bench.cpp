@@ -255,14 +255,8 @@ void add_fuzzy_command(CLI::App& app) {
       ->add_option("--examples", options->examples_dir,
                    "fuzzylite's examples folder (engines with FLD datasets)")
       ->capture_default_str();
-  fuzzy
-      ->add_option("--min-time", options->min_seconds,
-                   "Seconds each library runs per repetition, at least")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  fuzzy->add_option("--repetitions", options->repetitions, "Repetitions; the median is reported")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  add_timing_options(*fuzzy, options->min_seconds, options->repetitions,
+                     "Seconds each library runs per repetition, at least");
   fuzzy->add_option("--filter", options->filter,
                     "Only engines whose name (folder/name) contains this text");
   fuzzy->callback([options]() { run_fuzzy_benchmark(*options); });

@@ -279,13 +279,8 @@ void add_gait_command(CLI::App& app) {
   gait->add_option("--style", options->style, "Built-in controller set")->capture_default_str();
   gait->add_option("--controllers", options->controllers,
                    "Controller set folder (manifest.json + FLL) instead of a built-in set");
-  gait->add_option("--min-time", options->min_seconds,
-                   "Wall seconds each side walks per repetition, at least")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  gait->add_option("--repetitions", options->repetitions, "Repetitions; the median is reported")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  add_timing_options(*gait, options->min_seconds, options->repetitions,
+                     "Wall seconds each side walks per repetition, at least");
   gait->add_option("--warm-up", options->warm_up, "Simulated seconds walked before timing")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

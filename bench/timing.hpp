@@ -5,9 +5,24 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 namespace fuzzygait::bench {
+
+// The options every subcommand times by: the least time per repetition (`what_runs` says what
+// runs that long) and how many repetitions the median is taken over.
+inline void add_timing_options(CLI::App& command, double& min_seconds, int& repetitions,
+                               const std::string& what_runs) {
+  command.add_option("--min-time", min_seconds, what_runs)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command.add_option("--repetitions", repetitions, "Repetitions; the median is reported")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+}
 
 using Clock = std::chrono::steady_clock;
 

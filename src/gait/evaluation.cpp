@@ -11,6 +11,14 @@ namespace {
 
 constexpr double kOnGround = 0.002;  // m: a foot point this close to the ground bears on it
 
+// The joints in gait::Joint order, and one of a frame's leg angles in degrees.
+constexpr const char* kJointNames[4] = {"hip", "knee", "ankle", "toe"};
+double joint_degrees(const Frame& f, std::size_t side, std::size_t joint) {
+  const rig::LegAngles& a = f.pose.legs[side];
+  const double v[4] = {a.hip, a.knee, a.ankle, a.toe};
+  return rig::degrees(v[joint]);
+}
+
 double mean_of(const std::vector<double>& v) {
   double s = 0.0;
   for (double x : v)
@@ -130,11 +138,7 @@ std::array<JointSmoothness, 4> joint_smoothness(const Motion& m, std::size_t fir
     std::size_t accelerations = 0;
     std::size_t jerks = 0;
     for (std::size_t side = 0; side < 2; ++side) {
-      auto angle = [&](std::size_t i) {
-        const rig::LegAngles& a = m.frames[i].pose.legs[side];
-        const double v[4] = {a.hip, a.knee, a.ankle, a.toe};
-        return rig::degrees(v[j]);
-      };
+      auto angle = [&](std::size_t i) { return joint_degrees(m.frames[i], side, j); };
       for (std::size_t i = first + 1; i + 1 < n; ++i) {
         const double acceleration = (angle(i + 1) - 2.0 * angle(i) + angle(i - 1)) * fps * fps;
         acceleration_squares += acceleration * acceleration;
@@ -304,9 +308,7 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
     const auto s = static_cast<std::size_t>(side);
     for (int j = 0; j < 4; ++j) {
       auto angle = [&](std::size_t i) {
-        const rig::LegAngles& a = m.frames[i].pose.legs[s];
-        const double v[4] = {a.hip, a.knee, a.ankle, a.toe};
-        return rig::degrees(v[j]);
+        return joint_degrees(m.frames[i], s, static_cast<std::size_t>(j));
       };
       for (std::size_t i = 2; i < n; ++i) {
         const double v1 = (angle(i) - angle(i - 1)) / dt;
@@ -351,12 +353,11 @@ std::string to_text(const GaitReport& r) {
   row("min toe clearance, swing", r.min_toe_clearance * 1000.0, "mm");
   row("max velocity jump at switch", r.max_velocity_jump, "deg/s per frame");
   row("velocity change, 99th pct", r.typical_velocity_change, "deg/s per frame");
-  const char* joints[4] = {"hip", "knee", "ankle", "toe"};
   for (std::size_t j = 0; j < 4; ++j) {
     const JointSmoothness& s = r.smoothness[j];
     std::snprintf(line, sizeof line,
                   "%-6s acceleration RMS %8.0f deg/s^2   jerk RMS %9.0f, max %9.0f deg/s^3\n",
-                  joints[j], s.rms_acceleration, s.rms_jerk, s.max_jerk);
+                  kJointNames[j], s.rms_acceleration, s.rms_jerk, s.max_jerk);
     out += line;
   }
   auto joint = [&](const char* name, const std::optional<JointScore>& s) {
@@ -394,12 +395,11 @@ std::string to_json(const GaitReport& r) {
   j["min_toe_clearance_m"] = r.min_toe_clearance;
   j["max_velocity_jump_deg_per_s"] = r.max_velocity_jump;
   j["typical_velocity_change_deg_per_s"] = r.typical_velocity_change;
-  const char* joints[4] = {"hip", "knee", "ankle", "toe"};
   for (std::size_t k = 0; k < 4; ++k) {
     const JointSmoothness& s = r.smoothness[k];
-    j["smoothness"][joints[k]] = {{"rms_acceleration_deg_per_s2", s.rms_acceleration},
-                                  {"rms_jerk_deg_per_s3", s.rms_jerk},
-                                  {"max_jerk_deg_per_s3", s.max_jerk}};
+    j["smoothness"][kJointNames[k]] = {{"rms_acceleration_deg_per_s2", s.rms_acceleration},
+                                       {"rms_jerk_deg_per_s3", s.rms_jerk},
+                                       {"max_jerk_deg_per_s3", s.max_jerk}};
   }
   auto joint = [&](const char* name, const std::optional<JointScore>& s) {
     if (s)

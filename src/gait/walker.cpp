@@ -64,6 +64,17 @@ double sweep_scale(double start, double end) {
   return 0.5 * (end - start);
 }
 
+// Between `good` (passes `ok`) and `bad` (fails it), the value nearest `bad` that still passes,
+// to 40 halvings.
+template <class Ok>
+double bisect(double good, double bad, Ok ok) {
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (good + bad);
+    (ok(mid) ? good : bad) = mid;
+  }
+  return good;
+}
+
 Point contact_point(const LegPoints& p, Phase phase) {
   return phase == Phase::Ball ? p.ball : p.heel;
 }
@@ -166,12 +177,12 @@ bool same_bits(double a, double b) {
 // Inline, so that a caller computes only the points it reads.
 inline LegPoints Walker::leg_points(int leg, Point hip, const LegAngles& angles) {
   const rig::LegOrientation o = rig::orientation(state_.pelvis_tilt, angles);
-  LegTrig& t = trig_[static_cast<std::size_t>(leg)];
+  TrigCache& t = trig_[static_cast<std::size_t>(leg)];
   t.update(o);
   return rig::forward_kinematics(segments_, hip, t.trig);
 }
 
-void Walker::LegTrig::update(const rig::LegOrientation& o) {
+void Walker::TrigCache::update(const rig::LegOrientation& o) {
   if (same_bits(o.thigh, orientation.thigh) && same_bits(o.shank, orientation.shank) &&
       same_bits(o.foot, orientation.foot) && same_bits(o.toes, orientation.toes)) {
     return;
@@ -487,16 +498,11 @@ void Walker::keep_knee_up(int leg, double known_good) {
     if (l.phase == Phase::Flat) l.angles.ankle = slope - shank_of(state_.pelvis_tilt, l.angles);
     return knee_gap(leg);
   };
-  double bad = l.angles.knee;
+  const double bad = l.angles.knee;
   double good = known_good;
   // Where the ankle moved too, the previous flexion may no longer clear: a straighter knee does.
   if (gap(good) < 0.0) good = limits_.minimum.knee;
-  if (gap(good) >= 0.0) {
-    for (int i = 0; i < 40; ++i) {
-      const double mid = 0.5 * (bad + good);
-      (gap(mid) >= 0.0 ? good : bad) = mid;
-    }
-  }
+  if (gap(good) >= 0.0) good = bisect(good, bad, [&](double knee) { return gap(knee) >= 0.0; });
   gap(good);
   if (l.phase == Phase::Ball) l.angles.toe = slope - foot_of(state_.pelvis_tilt, l.angles);
   LegState& other = state_.legs[static_cast<std::size_t>(1 - leg)];
@@ -525,18 +531,13 @@ void Walker::clear_ground(int leg, double max_change, double margin, bool with_t
     return terrain_->height(p.knee.x) - p.knee.y + kSwingClearance;
   };
   if (knee_depth(l.angles.hip) > 0.0) {
-    double low = l.angles.hip;
-    double high = std::min(limits_.maximum.hip, tilt + std::numbers::pi / 2.0);
-    if (knee_depth(high) <= 0.0) {
-      for (int i = 0; i < 40; ++i) {
-        const double mid = 0.5 * (low + high);
-        (knee_depth(mid) > 0.0 ? low : high) = mid;
-      }
+    double forward = std::min(limits_.maximum.hip, tilt + std::numbers::pi / 2.0);
+    if (knee_depth(forward) <= 0.0) {
+      forward = bisect(forward, l.angles.hip, [&](double hip) { return !(knee_depth(hip) > 0.0); });
     }
-    l.angles.hip = std::max(l.angles.hip, high);
+    l.angles.hip = std::max(l.angles.hip, forward);
   }
-  double low = l.angles.knee;
-  double high = std::min(limits_.maximum.knee, l.angles.knee + max_change);
+  const double high = std::min(limits_.maximum.knee, l.angles.knee + max_change);
   auto depth = [&](double knee) {
     rig::LegAngles a = l.angles;
     a.knee = knee;
@@ -546,11 +547,7 @@ void Walker::clear_ground(int leg, double max_change, double margin, bool with_t
     l.angles.knee = high;
     return;
   }
-  for (int i = 0; i < 40; ++i) {
-    const double mid = 0.5 * (low + high);
-    (depth(mid) > 0.0 ? low : high) = mid;
-  }
-  l.angles.knee = high;
+  l.angles.knee = bisect(high, l.angles.knee, [&](double knee) { return !(depth(knee) > 0.0); });
 }
 
 void Walker::update_metrics(int leg, const LegPoints& p, MetricValues& m) {

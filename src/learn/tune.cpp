@@ -278,8 +278,8 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
                              std::max(0.0, r.knee_score->rmse - options.knee_rmse_max) +
                              std::max(0.0, r.ankle_score->rmse - options.ankle_rmse_max));
           for (const gait::JointScore* s : {&*r.thigh_score, &*r.knee_score}) {
-            const double ratio = s->acceleration_rms / std::max(s->reference_acceleration_rms, 1.0);
-            realism += 10.0 * std::max(0.0, ratio - options.acceleration_ratio_max);
+            realism +=
+                10.0 * std::max(0.0, s->acceleration_ratio() - options.acceleration_ratio_max);
           }
         }
         realism += over(r.knee_peak, options.knee_peak_min, options.knee_peak_max) +
@@ -303,15 +303,13 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
             r.cycle_time, 1000.0 * r.min_toe_clearance, r.knee_peak, r.knee_peak_percent);
         *report += line;
         if (c.reference) {
-          auto ratio = [](const gait::JointScore& s) {
-            return s.acceleration_rms / std::max(s.reference_acceleration_rms, 1.0);
-          };
           std::snprintf(line, sizeof line,
                         " | rmse thigh %.1f knee %.1f ankle %.1f, r %.2f %.2f %.2f, acceleration "
                         "x%.1f x%.1f x%.1f",
                         r.thigh_score->rmse, r.knee_score->rmse, r.ankle_score->rmse,
                         r.thigh_score->pearson, r.knee_score->pearson, r.ankle_score->pearson,
-                        ratio(*r.thigh_score), ratio(*r.knee_score), ratio(*r.ankle_score));
+                        r.thigh_score->acceleration_ratio(), r.knee_score->acceleration_ratio(),
+                        r.ankle_score->acceleration_ratio());
           *report += line;
         }
         *report += "\n";

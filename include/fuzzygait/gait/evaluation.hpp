@@ -4,6 +4,7 @@
 // comes from a command anyone can run.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string>
@@ -42,6 +43,10 @@ struct JointScore {
   // played at the walk's cycle time: how vigorously the joint moves against how people move it.
   double acceleration_rms = 0.0;
   double reference_acceleration_rms = 0.0;
+  // How many times as hard as people the joint moves (a reference under 1 deg/s^2 counts as 1).
+  double acceleration_ratio() const {
+    return acceleration_rms / std::max(reference_acceleration_rms, 1.0);
+  }
 };
 
 // Smoothness of one joint over a walk, from frame-to-frame finite differences of its angle.
@@ -50,9 +55,8 @@ struct JointSmoothness {
   double rms_jerk = 0.0;          // deg/s^3
   double max_jerk = 0.0;          // deg/s^3, the largest |jerk|
 };
-enum class JointIndex : int { Hip = 0, Knee = 1, Ankle = 2, Toe = 3 };
 
-// Angular acceleration and jerk of the hip, knee, ankle and toe (in that order), both legs
+// Angular acceleration and jerk of the hip, knee, ankle and toe (gait::Joint order), both legs
 // pooled, over the frames from `first` on. Throws std::invalid_argument when fewer than four
 // frames remain or the frame rate is not positive.
 std::array<JointSmoothness, 4> joint_smoothness(const Motion& motion, std::size_t first = 0);

@@ -165,12 +165,12 @@ class Walker {
   std::function<double(int, const MetricValues&)> controller_backend_;
   // Each leg's segment orientations when their sines and cosines were last computed: a time
   // step places a leg several times, mostly with unchanged angles (see leg_points()).
-  struct LegTrig {
+  struct TrigCache {
     rig::LegOrientation orientation;  // zero, as rig::LegTrig's defaults
     rig::LegTrig trig;
     void update(const rig::LegOrientation& o);  // all four, when any orientation changed
   };
-  std::array<LegTrig, 2> trig_{};
+  std::array<TrigCache, 2> trig_{};
   std::vector<EventRecord> events_;
 };
 
