@@ -189,7 +189,7 @@ void Walker::TrigCache::update(const rig::LegOrientation& o) {
   }
   // All four at once (one vectorised kernel); an unchanged segment gets the same bits again.
   orientation = o;
-  trig = rig::trig(o);
+  trig = rig::detail::leg_trig(o);
 }
 
 void Walker::record(rig::Side side, Event event, Point where) {

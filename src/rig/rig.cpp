@@ -42,20 +42,7 @@ void validate(const Segments& s) {
 }
 
 LegTrig trig(const LegOrientation& o) {
-  const double angles[4] = {o.thigh, o.shank, o.foot, o.toes};
-  double sin[4];
-  double cos[4];
-  detail::sin_cos(angles, sin, cos);
-  LegTrig t;
-  t.thigh_sin = sin[0];
-  t.thigh_cos = cos[0];
-  t.shank_sin = sin[1];
-  t.shank_cos = cos[1];
-  t.foot_sin = sin[2];
-  t.foot_cos = cos[2];
-  t.toes_sin = sin[3];
-  t.toes_cos = cos[3];
-  return t;
+  return detail::leg_trig(o);
 }
 
 LegPoints forward_kinematics(const Segments& s, Point hip, double pelvis_tilt,
@@ -67,13 +54,6 @@ bool JointLimits::contains(const LegAngles& a) const {
   return a.hip >= minimum.hip && a.hip <= maximum.hip && a.knee >= minimum.knee &&
          a.knee <= maximum.knee && a.ankle >= minimum.ankle && a.ankle <= maximum.ankle &&
          a.toe >= minimum.toe && a.toe <= maximum.toe;
-}
-
-LegAngles JointLimits::clamp(const LegAngles& a) const {
-  return {std::clamp(a.hip, minimum.hip, maximum.hip),
-          std::clamp(a.knee, minimum.knee, maximum.knee),
-          std::clamp(a.ankle, minimum.ankle, maximum.ankle),
-          std::clamp(a.toe, minimum.toe, maximum.toe)};
 }
 
 }  // namespace fuzzygait::rig

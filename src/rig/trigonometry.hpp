@@ -15,6 +15,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "fuzzygait/rig/rig.hpp"
+
 namespace fuzzygait::rig::detail {
 
 struct SinCos {
@@ -151,6 +153,24 @@ inline double arccos(double c) {
 // asin(s) for s in [-1, 1] (NaN outside).
 inline double arcsin(double s) {
   return arctan2(s, std::sqrt((1.0 - s) * (1.0 + s)));
+}
+
+// rig::trig, inline for the walker's inner loop: the four orientations in one call.
+inline LegTrig leg_trig(const LegOrientation& o) {
+  const double angles[4] = {o.thigh, o.shank, o.foot, o.toes};
+  double sin[4];
+  double cos[4];
+  sin_cos(angles, sin, cos);
+  LegTrig t;
+  t.thigh_sin = sin[0];
+  t.thigh_cos = cos[0];
+  t.shank_sin = sin[1];
+  t.shank_cos = cos[1];
+  t.foot_sin = sin[2];
+  t.foot_cos = cos[2];
+  t.toes_sin = sin[3];
+  t.toes_cos = cos[3];
+  return t;
 }
 
 }  // namespace fuzzygait::rig::detail

@@ -41,11 +41,6 @@ std::size_t Terrain::segment(double x) const {
   return std::clamp<std::size_t>(i == 0 ? 0 : i - 1, 0, points_.size() - 2);
 }
 
-double Terrain::slope(double x) const {
-  if (x < points_.front().x || x > points_.back().x) return 0.0;
-  return slopes_[segment(x)];
-}
-
 std::vector<Point> Terrain::profile(double x0, double x1) const {
   std::vector<Point> out{{x0, height(x0)}};
   for (const Point& p : points_) {

@@ -10,6 +10,7 @@
 // so the thigh's inclination to the vertical (forward +) is hip flexion minus pelvis tilt.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <numbers>
 #include <string>
@@ -128,7 +129,13 @@ struct JointLimits {
   LegAngles minimum{-0.52, 0.0, -0.79, -0.52};  // hip -30, knee 0, ankle -45, toe -30 deg
   LegAngles maximum{2.09, 2.44, 0.52, 1.40};    // hip 120, knee 140, ankle 30, toe 80 deg
   bool contains(const LegAngles& a) const;
-  LegAngles clamp(const LegAngles& a) const;
+  // Inline: the walker clamps every time step.
+  LegAngles clamp(const LegAngles& a) const {
+    return {std::clamp(a.hip, minimum.hip, maximum.hip),
+            std::clamp(a.knee, minimum.knee, maximum.knee),
+            std::clamp(a.ankle, minimum.ankle, maximum.ankle),
+            std::clamp(a.toe, minimum.toe, maximum.toe)};
+  }
 };
 
 // Inline: the walker converts its metrics every time step.

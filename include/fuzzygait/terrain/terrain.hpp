@@ -31,8 +31,11 @@ class Terrain {
     if (a.y == b.y && !std::isnan(x)) return a.y;  // level: the same value, no division
     return a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x);
   }
-  // Slope angle (radians, uphill forward +) of the segment under x.
-  double slope(double x) const;
+  // Slope angle (radians, uphill forward +) of the segment under x. Inline, as height().
+  double slope(double x) const {
+    if (x < points_.front().x || x > points_.back().x) return 0.0;
+    return slopes_[points_.size() == 2 ? 0 : segment(x)];
+  }
   // The profile between x0 and x1 as points, for drawing and files.
   std::vector<Point> profile(double x0, double x1) const;
   const std::vector<Point>& points() const { return points_; }
