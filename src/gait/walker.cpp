@@ -204,6 +204,7 @@ double Walker::stance_target() const {
 
 void Walker::start(const StartPose& start_pose) {
   state_ = WalkerState{};
+  end_points_valid_ = false;
   state_.pelvis_tilt = controllers_->pelvis_tilt;
   const double tilt = state_.pelvis_tilt;
   LegState& left = state_.legs[0];
@@ -318,6 +319,7 @@ void Walker::warm_up(double seconds) {
   terrain_ = ground;
   const double shift = state_.pelvis.x;
   state_.pelvis.x = 0.0;
+  end_points_valid_ = false;
   for (LegState& l : state_.legs) {
     l.anchor.x -= shift;
     l.target_x -= shift;
@@ -582,12 +584,15 @@ void Walker::advance(double dt) {
 
 void Walker::step(double h) {
   const double tilt = state_.pelvis_tilt;
-  std::array<LegPoints, 2> points;
+  if (!end_points_valid_) {
+    for (int leg = 0; leg < 2; ++leg) {
+      end_points_[static_cast<std::size_t>(leg)] =
+          leg_points(leg, state_.pelvis, state_.legs[static_cast<std::size_t>(leg)].angles);
+    }
+  }
   std::array<MetricValues, 2> metrics{};
   for (int leg = 0; leg < 2; ++leg) {
-    points[static_cast<std::size_t>(leg)] =
-        leg_points(leg, state_.pelvis, state_.legs[static_cast<std::size_t>(leg)].angles);
-    update_metrics(leg, points[static_cast<std::size_t>(leg)],
+    update_metrics(leg, end_points_[static_cast<std::size_t>(leg)],
                    metrics[static_cast<std::size_t>(leg)]);
   }
   const auto other_delta = static_cast<std::size_t>(Metric::OtherDelta);
@@ -696,31 +701,28 @@ void Walker::step(double h) {
     if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball) hand_over(state_.lead);
     break;
   }
-  // A foot that has just lifted off can sit a hair below the ground once the other foot takes
-  // the pelvis: lift it at once. (Its toe tip is left to the toes, which bend up below.)
-  for (int leg = 0; leg < 2; ++leg) {
-    const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-    if (l.phase == Phase::Swing && state_.lead >= 0 &&
-        foot_depth(leg_points(leg, state_.pelvis, l.angles), false) > 0.0) {
-      clear_ground(leg, limits_.maximum.knee, 0.0, false);
-    }
-  }
-  // Toes never dip below the ground: they bend up where the ground holds them.
   for (int leg = 0; leg < 2; ++leg) {
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-    const LegPoints p = leg_points(leg, state_.pelvis, l.angles);
+    LegPoints p = leg_points(leg, state_.pelvis, l.angles);
+    // A foot that has just lifted off can sit a hair below the ground once the other foot takes
+    // the pelvis: lift it at once. (Its toe tip is left to the toes, which bend up below.)
+    if (l.phase == Phase::Swing && state_.lead >= 0 && foot_depth(p, false) > 0.0) {
+      clear_ground(leg, limits_.maximum.knee, 0.0, false);
+      p = leg_points(leg, state_.pelvis, l.angles);
+    }
+    // Toes never dip below the ground: they bend up where the ground holds them.
     const double ground = terrain_->height(p.tip.x);
     if (p.tip.y < ground) {
       const double rise = std::clamp((ground - p.ball.y) / segments_.toe, -1.0, 1.0);
       l.angles.toe = std::max(l.angles.toe, arcsin(rise) - foot_of(tilt, l.angles));
+      p = leg_points(leg, state_.pelvis, l.angles);
     }
-  }
-  for (int leg = 0; leg < 2; ++leg) {
-    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    end_points_[static_cast<std::size_t>(leg)] = p;
     const LegAngles& before = previous[static_cast<std::size_t>(leg)];
     l.velocity = {(l.angles.hip - before.hip) / h, (l.angles.knee - before.knee) / h,
                   (l.angles.ankle - before.ankle) / h, (l.angles.toe - before.toe) / h};
   }
+  end_points_valid_ = true;
   state_.time += h;
 }
 

@@ -171,6 +171,9 @@ class Walker {
     void update(const rig::LegOrientation& o);  // all four, when any orientation changed
   };
   std::array<TrigCache, 2> trig_{};
+  // Each leg's points as the last time step left them: the next one starts from them.
+  std::array<rig::LegPoints, 2> end_points_{};
+  bool end_points_valid_ = false;
   std::vector<EventRecord> events_;
 };
 
