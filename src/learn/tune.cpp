@@ -162,8 +162,9 @@ double word_penalty(const gait::ControllerSet& set) {
 
 namespace {
 
-// Recovery from an awkward start: the walk must stay sound and settle into steps of the
-// commanded length within three steps. Returns 0 when it does.
+// Recovery from an awkward start: the walk must stay sound (finite, nothing below the ground at
+// any time step) and settle into steps of the commanded length within three steps. Returns 0
+// when it does.
 double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::string* report) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   gait::WalkerOptions wo;
@@ -173,8 +174,11 @@ double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::st
   std::vector<double> strikes;
   try {
     gait::Walker walker(set, wo, ground);
-    for (int i = 0; i < 8 * 60; ++i) {
-      walker.advance(1.0 / 60.0);
+    // Checked at every time step, as the acceptance test does: a frame rate would miss a foot
+    // that dips and comes back up between two frames.
+    const int steps = static_cast<int>(std::lround(8.0 / wo.time_step));
+    for (int i = 0; i < steps; ++i) {
+      walker.advance(wo.time_step);
       for (rig::Side side : rig::kSides) {
         const rig::LegPoints p = walker.points(side);
         for (const rig::Point& q : {p.knee, p.heel, p.ball, p.tip}) {
