@@ -28,6 +28,11 @@ constexpr double kLandingDelta = 0.8;
 // Mid-swing, the clearance reflex keeps a swinging foot this far above the ground (m); lifting it
 // well clear is the swing controllers' job.
 constexpr double kSwingClearance = 0.01;
+// Fastest each joint turns (rad/s; hip, knee, ankle, toe), about 1150 deg/s, a sprinter's knee:
+// the shipped walks reach at most 9, 20, 8 and 27 (the toes are turned by the ground).
+constexpr rig::LegAngles kMaxJointSpeed{20.0, 20.0, 20.0, 40.0};
+// Longest a swing lasts before the foot is put down anyway, s (walks swing for 0.3 to 0.5).
+constexpr double kLongestSwing = 1.0;
 // Fastest the clearance reflex folds the knee, rad/s.
 constexpr double kReflexSpeed = 10.0;
 
@@ -360,6 +365,7 @@ void Walker::lift_off(int leg) {
   const LegPoints p = leg_points(leg, state_.pelvis, l.angles);
   if (l.phase != Phase::Swing) record(static_cast<rig::Side>(leg), Event::ToeOff, p.tip);
   l.phase = Phase::Swing;
+  l.swing_start = state_.time;
   l.sweep_start = thigh_of(state_.pelvis_tilt, l.angles);
   const int lead = state_.lead;
   const double from =
@@ -660,7 +666,10 @@ void Walker::step(double h) {
       // folds just enough to keep the foot off the ground (a clearance reflex), and only a foot
       // the reflex cannot lift touches down early.
       LegPoints p = leg_points(leg, state_.pelvis, l.angles);
-      const bool arriving = l.delta >= kLandingDelta || state_.lead < 0;
+      // A swing that drags on (a leg stuck in a deep crouch after an awkward start) gives up
+      // and puts the foot down where it is.
+      const bool arriving = l.delta >= kLandingDelta || state_.lead < 0 ||
+                            state_.time - l.swing_start > kLongestSwing;
       const double knee_gap = p.knee.y - terrain_->height(p.knee.x);
       // The clearance wanted grows from nothing at toe off and fades again before landing, so
       // the reflex never jerks the knee when the foot leaves or reaches the ground.
@@ -719,8 +728,16 @@ void Walker::step(double h) {
     }
     end_points_[static_cast<std::size_t>(leg)] = p;
     const LegAngles& before = previous[static_cast<std::size_t>(leg)];
-    l.velocity = {(l.angles.hip - before.hip) / h, (l.angles.knee - before.knee) / h,
-                  (l.angles.ankle - before.ankle) / h, (l.angles.toe - before.toe) / h};
+    // What a joint remembers as its speed is capped: a jump made in one step (the chain closing
+    // onto a foot put down far from the body after an awkward start) must not carry on as a
+    // velocity, swinging the leg through a turn in a few steps and the pelvis with it.
+    auto speed = [h](double now, double then, double fastest) {
+      return std::clamp((now - then) / h, -fastest, fastest);
+    };
+    const LegAngles& m = kMaxJointSpeed;
+    l.velocity = {speed(l.angles.hip, before.hip, m.hip), speed(l.angles.knee, before.knee, m.knee),
+                  speed(l.angles.ankle, before.ankle, m.ankle),
+                  speed(l.angles.toe, before.toe, m.toe)};
   }
   end_points_valid_ = true;
   state_.time += h;

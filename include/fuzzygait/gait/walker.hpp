@@ -18,9 +18,11 @@
 //                    leg lifts off (toe off) and the new leg carries the pelvis.
 //   joint velocity   follows the controller's command with the set's inertia time constant, so
 //                    velocities never jump, even where a phase hands a joint to another controller.
+//                    What a joint remembers as its speed is capped at about a sprinter's, so that
+//                    the chain snapping onto a far foot (awkward starts) does not carry on.
 //   crouched starts  a carrying leg whose knee reaches the ground folds no further, and the
 //                    swinging leg then aims at least half a step ahead of the hip (only awkward
-//                    starts crouch that deep).
+//                    starts crouch that deep); a swing lasting a second puts its foot down.
 #pragma once
 
 #include <array>
@@ -55,9 +57,10 @@ struct LegState {
   // Thigh inclination where delta = +1 (radians): in stance set at the strike from the step
   // length; in swing rewritten every step, where a straight leg's heel would point at the target.
   double sweep_end = 0.0;
-  double target_x = 0.0;  // swing: where the heel should land
-  double strike_x = 0.0;  // stance: where the heel landed
-  double delta = 0.0;     // the leg's last progress metric
+  double target_x = 0.0;     // swing: where the heel should land
+  double swing_start = 0.0;  // swing: when the foot left the ground (s)
+  double strike_x = 0.0;     // stance: where the heel landed
+  double delta = 0.0;        // the leg's last progress metric
 };
 
 // Everything that changes while walking: plain data, so many characters pack into arrays.
