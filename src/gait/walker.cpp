@@ -329,6 +329,7 @@ void Walker::warm_up(double seconds) {
     l.anchor.x -= shift;
     l.target_x -= shift;
     l.strike_x -= shift;
+    l.swing_start -= state_.time;
   }
   state_.time = 0.0;
 }
