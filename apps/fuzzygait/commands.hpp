@@ -2,8 +2,18 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <fstream>
+#include <stdexcept>
+#include <string>
 
 namespace fuzzygait::cli {
+
+// The file at `path` for reading; throws std::runtime_error naming it when it cannot be opened.
+inline std::ifstream open_or_throw(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open the file");
+  return in;
+}
 
 void add_fuzzy_command(CLI::App& app);
 // `fuzzy plot`, a subcommand of `fuzzy` (fuzzy_plot_command.cpp).

@@ -16,12 +16,6 @@
 namespace fuzzygait::cli {
 namespace {
 
-std::ifstream open_or_throw(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open the file");
-  return in;
-}
-
 // The terrain CSV at `path`, or flat ground when `path` is empty.
 terrain::Terrain load_terrain(const std::string& path) {
   if (path.empty()) return terrain::Terrain::flat();

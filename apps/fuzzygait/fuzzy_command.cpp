@@ -32,8 +32,7 @@ std::vector<double> input_rows(const Engine& engine, const InputOptions& options
     if (options.data_path == "-") {
       table = read_fld_stream(std::cin, "<stdin>");
     } else {
-      std::ifstream in(options.data_path);
-      if (!in) throw std::runtime_error(options.data_path + ": cannot open the file");
+      std::ifstream in = open_or_throw(options.data_path);
       table = read_fld_stream(in, options.data_path);
     }
     const bool named = !table.columns.empty() && !table.columns.front().empty();
@@ -57,7 +56,8 @@ std::vector<double> input_rows(const Engine& engine, const InputOptions& options
     }
     rows.reserve(table.rows.size() * n);
     for (const std::vector<double>& row : table.rows) {
-      for (std::size_t i = 0; i < n; ++i) rows.push_back(row[column[i]]);
+      for (std::size_t i = 0; i < n; ++i)
+        rows.push_back(row[column[i]]);
     }
     return rows;
   }
@@ -97,8 +97,10 @@ Table evaluate_table(const Engine& engine, const InputOptions& options) {
   std::vector<double> outputs(rows * n_out);
   evaluator.evaluate_batch(inputs, outputs, workspace);
   Table table;
-  for (const InputVariable& v : engine.inputs) table.columns.push_back(v.name);
-  for (const OutputVariable& v : engine.outputs) table.columns.push_back(v.name);
+  for (const InputVariable& v : engine.inputs)
+    table.columns.push_back(v.name);
+  for (const OutputVariable& v : engine.outputs)
+    table.columns.push_back(v.name);
   table.rows.reserve(rows);
   for (std::size_t r = 0; r < rows; ++r) {
     std::vector<double> row(inputs.begin() + static_cast<std::ptrdiff_t>(r * n_in),
@@ -140,29 +142,33 @@ void print_summary(const Engine& engine, std::ostream& out) {
     terms(v.terms);
   }
   std::size_t rules = 0;
-  for (const RuleBlock& b : engine.rule_blocks) rules += b.rules.size();
+  for (const RuleBlock& b : engine.rule_blocks)
+    rules += b.rules.size();
   out << "rule blocks: " << engine.rule_blocks.size() << ", rules: " << rules << "\n";
   for (const RuleBlock& b : engine.rule_blocks) {
     out << "  " << (b.name.empty() ? "(unnamed)" : b.name) << ": conjunction "
         << name(b.conjunction) << ", disjunction " << name(b.disjunction) << ", implication "
         << name(b.implication) << ", activation " << b.activation.text()
         << (b.enabled ? "" : " (disabled)") << "\n";
-    for (const Rule& r : b.rules) out << "    " << r.text() << "\n";
+    for (const Rule& r : b.rules)
+      out << "    " << r.text() << "\n";
   }
 }
 
 void add_input_options(CLI::App& command, InputOptions& options) {
   command.add_option("--data", options.data_path,
                      "FLD table of input values (columns matched by name; '-' reads stdin)");
-  command.add_option("--grid", options.grid,
-                     "Evaluate N points per input across its range (default 11)")
+  command
+      .add_option("--grid", options.grid,
+                  "Evaluate N points per input across its range (default 11)")
       ->check(CLI::PositiveNumber);
 }
 
 }  // namespace
 
 void add_fuzzy_command(CLI::App& app) {
-  CLI::App* fuzzy = app.add_subcommand("fuzzy", "Evaluate, check, export and plot fuzzylite FLL engines");
+  CLI::App* fuzzy =
+      app.add_subcommand("fuzzy", "Evaluate, check, export and plot fuzzylite FLL engines");
   fuzzy->require_subcommand(1);
 
   auto eval_options = std::make_shared<InputOptions>();
@@ -185,7 +191,8 @@ void add_fuzzy_command(CLI::App& app) {
       std::cout << "status: ready\n";
       return;
     }
-    for (const std::string& p : problems) std::cout << "problem: " << p << "\n";
+    for (const std::string& p : problems)
+      std::cout << "problem: " << p << "\n";
     throw std::runtime_error(*check_path + ": " + std::to_string(problems.size()) +
                              " problem(s) stop the engine from being evaluated");
   });

@@ -90,13 +90,9 @@ std::array<const rig::Point*, 3> foot(const rig::LegPoints& p) {
 }  // namespace
 
 std::vector<std::size_t> heel_strikes(const Motion& m, rig::Side side) {
-  const auto min_gap = static_cast<std::size_t>(std::max(1.0, 0.35 * m.fps));
-  const auto s = static_cast<std::size_t>(rig::index(side));
   std::vector<std::size_t> strikes;
   for (std::size_t i = 1; i < m.frames.size(); ++i) {
-    const bool now = m.frames[i].contact[s];
-    const bool before = m.frames[i - 1].contact[s];
-    if (now && !before && (strikes.empty() || i - strikes.back() >= min_gap)) strikes.push_back(i);
+    if (begins_strike(m, i, side, strikes)) strikes.push_back(i);
   }
   return strikes;
 }

@@ -1,5 +1,6 @@
 #include "fuzzygait/gait/motion.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,15 @@ Motion record(Walker& walker, double duration, double fps) {
   return motion;
 }
 
+bool begins_strike(const Motion& m, std::size_t i, rig::Side side,
+                   const std::vector<std::size_t>& strikes) {
+  if (i == 0 || i >= m.frames.size()) return false;
+  const auto s = static_cast<std::size_t>(rig::index(side));
+  const auto min_gap = static_cast<std::size_t>(std::max(1.0, 0.35 * m.fps));
+  return m.frames[i].contact[s] && !m.frames[i - 1].contact[s] &&
+         (strikes.empty() || i - strikes.back() >= min_gap);
+}
+
 Motion record_cycles(Walker& walker, int cycles, double fps) {
   check_fps(fps);
   if (cycles < 1) throw std::invalid_argument("cycles must be at least 1");
@@ -50,15 +60,12 @@ Motion record_cycles(Walker& walker, int cycles, double fps) {
   motion.fps = fps;
   motion.segments = walker.segments();
   const double limit = 3.0 * (cycles + 2);
-  int left_strikes = 0;
+  std::vector<std::size_t> left_strikes;
   for (std::size_t i = 0;; ++i) {
     if (i > 0) walker.advance(1.0 / fps);
-    for (const EventRecord& e : walker.events()) {
-      if (e.side == rig::Side::Left && e.event == Event::HeelStrike) ++left_strikes;
-    }
-    walker.clear_events();
     motion.frames.push_back(capture_frame(walker, static_cast<double>(i) / fps));
-    if (left_strikes >= cycles + 2) break;
+    if (begins_strike(motion, i, rig::Side::Left, left_strikes)) left_strikes.push_back(i);
+    if (left_strikes.size() >= static_cast<std::size_t>(cycles) + 2) break;
     if (motion.frames.back().time > limit) {
       throw std::runtime_error("the walker did not complete " + std::to_string(cycles) +
                                " cycles in " + std::to_string(limit) + " s");

@@ -29,7 +29,8 @@ constexpr double kLandingDelta = 0.8;
 // well clear is the swing controllers' job.
 constexpr double kSwingClearance = 0.01;
 // Fastest each joint turns (rad/s; hip, knee, ankle, toe), about 1150 deg/s, a sprinter's knee:
-// the shipped walks reach at most 9, 20, 8 and 27 (the toes are turned by the ground).
+// the shipped sets' walks peak at 9, 20, 8 and 27 over the step/stature grid (the toes are turned
+// by the ground).
 constexpr rig::LegAngles kMaxJointSpeed{20.0, 20.0, 20.0, 40.0};
 // Longest a swing lasts before the foot is put down anyway, s (walks swing for 0.3 to 0.5).
 constexpr double kLongestSwing = 1.0;

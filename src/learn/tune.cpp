@@ -174,8 +174,9 @@ double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::st
   std::vector<double> strikes;
   try {
     gait::Walker walker(set, wo, ground);
-    // Checked at every time step, as the acceptance test does: a frame rate would miss a foot
-    // that dips and comes back up between two frames.
+    // The ground is checked at every time step, as in the acceptance test (which also checks
+    // joint limits and the pelvis's moves): a frame rate would miss a foot that dips and comes
+    // back up between two frames.
     const int steps = static_cast<int>(std::lround(8.0 / wo.time_step));
     for (int i = 0; i < steps; ++i) {
       walker.advance(wo.time_step);

@@ -33,8 +33,7 @@ Terrain Terrain::polyline(std::vector<Point> points) {
   return Terrain(std::move(points));
 }
 
-std::size_t Terrain::segment(double x) const {
-  if (points_.size() == 2) return 0;  // flat ground and single slopes: nothing to search
+std::size_t Terrain::search_segment(double x) const {
   const auto it = std::upper_bound(points_.begin(), points_.end(), x,
                                    [](double v, const Point& p) { return v < p.x; });
   const std::size_t i = static_cast<std::size_t>(it - points_.begin());

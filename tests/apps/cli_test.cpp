@@ -46,7 +46,7 @@ TEST(WalkCommand, WritesEveryFileAndTheSummary) {
   std::ifstream csv(prefix.string() + ".csv");
   const gait::Motion m = io::read_walk_csv(csv, "short.csv");
   EXPECT_NEAR(m.fps, 60.0, 1e-3);
-  // The options took effect: a 1.6 m body (thigh 0.245 H) stepping about 0.6 m.
+  // The options took effect: a 1.6 m body (thigh 0.245 H).
   EXPECT_NEAR(m.segments.thigh, 0.245 * 1.6, 1e-5);
   EXPECT_THAT(read_text(prefix.string() + ".bvh"), HasSubstr("ROOT Hips"));
   EXPECT_EQ(read_text(prefix.string() + ".terrain.csv").substr(0, 4), "x,y\n");
@@ -87,8 +87,9 @@ TEST(EvalCommand, PrintsTheTableAndWritesTheJson) {
   ASSERT_EQ(run_program("walk --cycles 4 -o " + shell_quoted(prefix)).status, 0);
   const std::filesystem::path json = scratch("for_eval.json");
   std::filesystem::remove(json);
-  const auto run = run_program("eval " + shell_quoted(prefix.string() + ".csv") +
-                               " --step 0.70 --reference schwartz2008_free --json " + shell_quoted(json));
+  const auto run =
+      run_program("eval " + shell_quoted(prefix.string() + ".csv") +
+                  " --step 0.70 --reference schwartz2008_free --json " + shell_quoted(json));
   ASSERT_EQ(run.status, 0) << run.output;
   for (const char* row :
        {"reference: schwartz2008_free", "cadence", "stance", "step error", "max foot slip",
@@ -103,7 +104,8 @@ TEST(EvalCommand, PrintsTheTableAndWritesTheJson) {
   EXPECT_GT(j.at("smoothness").at("knee").at("rms_jerk_deg_per_s3").get<double>(), 0.0);
   EXPECT_EQ(j.at("mean_cycle").at("knee").size(), 51u);
   // --json - prints only the JSON.
-  const auto to_stdout = run_program("eval " + shell_quoted(prefix.string() + ".csv") + " --json -");
+  const auto to_stdout =
+      run_program("eval " + shell_quoted(prefix.string() + ".csv") + " --json -");
   ASSERT_EQ(to_stdout.status, 0);
   const nlohmann::json printed = nlohmann::json::parse(to_stdout.output);
   EXPECT_EQ(printed.at("cycles"), j.at("cycles"));

@@ -40,22 +40,31 @@ Table read_table(const fs::path& path) {
   return read_fld_stream(in, path.string());
 }
 
-// Evaluates the dataset's inputs in order and compares with its outputs; returns the number of
-// compared values.
-std::size_t reproduce(const Engine& engine, const Table& data, const std::string& label) {
+// Evaluates the dataset's inputs in order and compares every row with its outputs; every
+// variable must have its column.
+void reproduce(const Engine& engine, const Table& data, const std::string& label) {
   const Evaluator evaluator(engine);
   Workspace workspace = evaluator.make_workspace();
+  std::vector<std::size_t> input_columns;
+  std::vector<std::size_t> output_columns;
+  for (const InputVariable& v : engine.inputs) {
+    const int column = data.column(v.name);
+    ASSERT_GE(column, 0) << label << ": no column for input '" << v.name << "'";
+    input_columns.push_back(static_cast<std::size_t>(column));
+  }
+  for (const OutputVariable& v : engine.outputs) {
+    const int column = data.column(v.name);
+    ASSERT_GE(column, 0) << label << ": no column for output '" << v.name << "'";
+    output_columns.push_back(static_cast<std::size_t>(column));
+  }
   std::vector<double> inputs(engine.inputs.size());
   std::vector<double> outputs(engine.outputs.size());
-  std::size_t compared = 0;
   for (std::size_t r = 0; r < data.rows.size(); ++r) {
-    for (std::size_t i = 0; i < inputs.size(); ++i) {
-      inputs[i] = data.rows[r][static_cast<std::size_t>(data.column(engine.inputs[i].name))];
-    }
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+      inputs[i] = data.rows[r][input_columns[i]];
     evaluator.evaluate(inputs, outputs, workspace);
     for (std::size_t o = 0; o < outputs.size(); ++o) {
-      const double expected =
-          data.rows[r][static_cast<std::size_t>(data.column(engine.outputs[o].name))];
+      const double expected = data.rows[r][output_columns[o]];
       if (std::isnan(expected)) {
         EXPECT_TRUE(std::isnan(outputs[o])) << label << " row " << r;
       } else if (std::isinf(expected)) {
@@ -64,10 +73,8 @@ std::size_t reproduce(const Engine& engine, const Table& data, const std::string
         EXPECT_NEAR(expected, outputs[o], 1e-6)
             << label << " row " << r << " output " << engine.outputs[o].name;
       }
-      ++compared;
     }
   }
-  return compared;
 }
 
 class FuzzyliteExample : public ::testing::TestWithParam<fs::path> {};
@@ -80,7 +87,7 @@ TEST_P(FuzzyliteExample, ReproducesItsDataset) {
   const Table data = read_table(fld);
   ASSERT_EQ(data.rows.size(), 1024u) << fld;
   ASSERT_FALSE(engine.outputs.empty());
-  EXPECT_EQ(reproduce(engine, data, fll.string()), data.rows.size() * engine.outputs.size());
+  reproduce(engine, data, fll.string());
 }
 
 TEST_P(FuzzyliteExample, SurvivesAnFllRoundTrip) {
@@ -95,8 +102,7 @@ TEST_P(FuzzyliteExample, SurvivesAnFllRoundTrip) {
   const Table data = read_table(fld);
   ASSERT_EQ(data.rows.size(), 1024u) << fld;
   ASSERT_FALSE(engine.outputs.empty());
-  EXPECT_EQ(reproduce(again, data, "round trip of " + fll.string()),
-            data.rows.size() * engine.outputs.size());
+  reproduce(again, data, "round trip of " + fll.string());
 }
 
 std::string test_name(const ::testing::TestParamInfo<fs::path>& info) {

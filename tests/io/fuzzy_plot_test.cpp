@@ -5,13 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <memory>
-#include <sstream>
 #include <string>
 
 #include "fuzzygait/fuzzy/fll.hpp"
@@ -28,8 +23,8 @@ using fuzzygait::test::check_xml;
 using fuzzygait::test::count;
 using fuzzygait::test::keep;
 using fuzzygait::test::ProgramRun;
-using fuzzygait::test::run_program;
 using fuzzygait::test::read_text;
+using fuzzygait::test::run_program;
 using ::testing::HasSubstr;
 using ::testing::Not;
 

@@ -118,9 +118,10 @@ TEST(SetParameters, ApplyingTheStartGivesTheSameSet) {
 TEST(SetParameters, InertiaNeverGoesBelowItsMinimum) {
   const learn::SetParameters p(test::default_set(), 0.02);
   std::vector<double> v = p.values();
-  for (double& x : v)
-    x -= 50.0;  // far below anything sensible
-  EXPECT_GE(p.apply(v).inertia, 0.02);
+  v.back() = 0.0;  // the inertia is the last value: no time constant at all
+  EXPECT_EQ(p.apply(v).inertia, 0.02);
+  v.back() = -0.01;  // values are magnitudes
+  EXPECT_EQ(p.apply(v).inertia, 0.02);
 }
 
 TEST(WordPenalty, ShippedSetsKeepTheirWordsAndABrokenWordCosts) {

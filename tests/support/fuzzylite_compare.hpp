@@ -42,6 +42,18 @@ inline std::size_t expect_fuzzylite_outputs(fl::Engine& reference, const Fuzzyli
   std::vector<fl::OutputVariable*> outputs;
   for (const std::string& name : c.outputs)
     outputs.push_back(reference.getOutputVariable(name));
+  bool missing = false;
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    if (inputs[k] != nullptr) continue;
+    ADD_FAILURE() << c.label << ": fuzzylite's engine has no input " << c.inputs[k];
+    missing = true;
+  }
+  for (std::size_t k = 0; k < outputs.size(); ++k) {
+    if (outputs[k] != nullptr) continue;
+    ADD_FAILURE() << c.label << ": fuzzylite's engine has no output " << c.outputs[k];
+    missing = true;
+  }
+  if (missing) return 0;
   std::size_t rows = c.inputs.empty() ? 0 : 1;
   for (const std::vector<double>& v : c.values)
     rows *= v.size();

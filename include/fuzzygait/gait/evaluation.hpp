@@ -84,7 +84,7 @@ struct GaitReport {
   double min_toe_clearance = 0.0;      // m, mid-swing (middle 60 % of swing)
   double max_velocity_jump = 0.0;  // deg/s, largest change of a joint's velocity at a phase switch
   double typical_velocity_change = 0.0;  // deg/s, 99th percentile of frame-to-frame changes
-  // Angular acceleration and jerk of hip, knee, ankle and toe over the measured cycles.
+  // Angular acceleration and jerk of hip, knee, ankle and toe from the first measured cycle on.
   std::array<JointSmoothness, 4> smoothness{};
   // Mean curves of the left leg over the cycle (degrees): thigh inclination, knee, ankle, toe.
   Curve thigh;
@@ -107,8 +107,8 @@ GaitReport evaluate(const Motion& motion, const terrain::Terrain& terrain,
 std::string to_text(const GaitReport& report);
 std::string to_json(const GaitReport& report);
 
-// The frames where a foot's contact begins (heel or forefoot strike), at least 0.35 s apart: the
-// strikes that part evaluate()'s gait cycles.
+// The frames where a foot's strikes begin (begins_strike): the strikes that part evaluate()'s gait
+// cycles.
 std::vector<std::size_t> heel_strikes(const Motion& motion, rig::Side side);
 
 // Where the swing knee flexion peaks: the largest mean value (degrees) in the second half of the

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "fuzzygait/gait/walker.hpp"
@@ -29,8 +30,15 @@ Frame capture_frame(const Walker& walker, double time);
 // Runs a walker for `duration` seconds and samples it at `fps` (frame 0 is the start pose).
 Motion record(Walker& walker, double duration, double fps);
 
+// Whether frame i begins a strike of `side`: its contact begins there, at least 0.35 s after the
+// last of `strikes` (earlier strikes of that side, in order). The strikes that part gait cycles,
+// for evaluate() and record_cycles() alike.
+bool begins_strike(const Motion& motion, std::size_t i, rig::Side side,
+                   const std::vector<std::size_t>& strikes);
+
 // Runs a walker until `cycles` left gait cycles have completed after the first, i.e. until the
-// left heel has struck cycles + 2 times (evaluate() skips the cycle before the second strike),
+// left foot has struck (begins_strike) cycles + 2 times (evaluate() skips the cycle before the
+// second strike),
 // sampling it at `fps` (frame 0 is the start pose). Throws std::runtime_error when that has not
 // happened within 3 s per cycle, cycles + 2 of them; std::invalid_argument for an fps outside
 // 1..10000 or fewer than one cycle.

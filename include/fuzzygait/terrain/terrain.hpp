@@ -25,7 +25,7 @@ class Terrain {
     // Inline: the walker asks several times a time step, mostly of flat ground.
     if (x <= points_.front().x) return points_.front().y;
     if (x >= points_.back().x) return points_.back().y;
-    const std::size_t i = points_.size() == 2 ? 0 : segment(x);
+    const std::size_t i = segment(x);
     const Point& a = points_[i];
     const Point& b = points_[i + 1];
     if (a.y == b.y && !std::isnan(x)) return a.y;  // level: the same value, no division
@@ -34,7 +34,7 @@ class Terrain {
   // Slope angle (radians, uphill forward +) of the segment under x. Inline, as height().
   double slope(double x) const {
     if (x < points_.front().x || x > points_.back().x) return 0.0;
-    return slopes_[points_.size() == 2 ? 0 : segment(x)];
+    return slopes_[segment(x)];
   }
   // The profile between x0 and x1 as points, for drawing and files.
   std::vector<Point> profile(double x0, double x1) const;
@@ -42,7 +42,9 @@ class Terrain {
 
  private:
   explicit Terrain(std::vector<Point> points);
-  std::size_t segment(double x) const;
+  // Index of the segment under x; inline for one-segment ground (flat, a single slope).
+  std::size_t segment(double x) const { return points_.size() == 2 ? 0 : search_segment(x); }
+  std::size_t search_segment(double x) const;
   std::vector<Point> points_;
   std::vector<double> slopes_;  // of each segment, radians
 };
