@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "fuzzygait/gait/motion.hpp"
+#include "fuzzygait/gait/recovery.hpp"
 #include "fuzzygait/learn/cmaes.hpp"
 
 namespace fuzzygait::learn {
@@ -162,50 +163,20 @@ double word_penalty(const gait::ControllerSet& set) {
 
 namespace {
 
-// Recovery from an awkward start: the walk must stay sound (finite, nothing below the ground at
-// any time step) and settle into steps of the commanded length within three steps. Returns 0
-// when it does.
+// Recovery from an awkward start (gait::walk_from_random_start, the acceptance test's check):
+// the walk must stay sound and settle into steps of the commanded length within three steps.
+// Returns 0 when it does.
 double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::string* report) {
   const terrain::Terrain ground = terrain::Terrain::flat();
-  gait::WalkerOptions wo;
-  wo.start.random = true;
-  wo.start.seed = seed;
+  const gait::WalkerOptions wo;
   double cost = 0.0;
-  std::vector<double> strikes;
   try {
-    gait::Walker walker(set, wo, ground);
-    // The ground is checked at every time step, as in the acceptance test (which also checks
-    // joint limits and the pelvis's moves): a frame rate would miss a foot that dips and comes
-    // back up between two frames.
-    const int steps = static_cast<int>(std::lround(8.0 / wo.time_step));
-    for (int i = 0; i < steps; ++i) {
-      walker.advance(wo.time_step);
-      for (rig::Side side : rig::kSides) {
-        const rig::LegPoints p = walker.points(side);
-        for (const rig::Point& q : {p.knee, p.heel, p.ball, p.tip}) {
-          if (!std::isfinite(q.y) || q.y < ground.height(q.x) - 1e-6) cost = 100.0;
-        }
-      }
-      for (const gait::EventRecord& e : walker.events()) {
-        if (e.event == gait::Event::HeelStrike || e.event == gait::Event::ForefootStrike) {
-          strikes.push_back(e.where.x);
-        }
-      }
-      walker.clear_events();
-      if (cost > 0.0) break;
-    }
+    const gait::RecoveryReport r = gait::walk_from_random_start(set, wo, seed, ground);
+    if (!r.sound()) cost = 100.0;
+    cost += 5.0 * r.unsettled_steps(wo.step_length);
   } catch (const std::exception&) {
     cost = 100.0;
   }
-  // Steps after the third must be within 5 % of the command; each missing or wrong one costs.
-  int wrong = 0;
-  for (std::size_t k = 4; k < 10; ++k) {
-    if (k >= strikes.size() ||
-        std::abs(strikes[k] - strikes[k - 1] - wo.step_length) > 0.05 * wo.step_length) {
-      ++wrong;
-    }
-  }
-  cost += 5.0 * wrong;
   if (report && cost > 0.0) {
     *report += "random start " + std::to_string(seed) + ": cost " + std::to_string(cost) + "\n";
   }

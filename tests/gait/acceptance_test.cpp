@@ -14,6 +14,7 @@
 
 #include "fuzzygait/gait/evaluation.hpp"
 #include "fuzzygait/gait/motion.hpp"
+#include "fuzzygait/gait/recovery.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "support/walks.hpp"
 
@@ -101,10 +102,10 @@ TEST(Acceptance, CurvesChangeWithStepLengthAsPeoplesDo) {
 }
 
 // The joint angles of both legs, left then right.
-std::array<double, 8> leg_angles(const gait::WalkerState& state) {
+std::array<double, 8> leg_angles(const std::array<rig::LegAngles, 2>& legs) {
   std::array<double, 8> out{};
   for (std::size_t k = 0; k < 2; ++k) {
-    const rig::LegAngles& a = state.legs[k].angles;
+    const rig::LegAngles& a = legs[k];
     out[4 * k] = a.hip;
     out[4 * k + 1] = a.knee;
     out[4 * k + 2] = a.ankle;
@@ -113,21 +114,20 @@ std::array<double, 8> leg_angles(const gait::WalkerState& state) {
   return out;
 }
 
-// 500 seeded random starts within the joint limits: no NaN, nothing below the ground at any time
-// step, joints within their limits (but for a known excess, below), and steady steps of the
-// commanded length from the fourth step on (the first touchdown is not a step).
+// 500 seeded random starts within the joint limits, checked at every time step, not only every
+// frame (what happens between frames shows in a game too; gait::walk_from_random_start): no NaN,
+// nothing below the ground, joints within their limits, no pop of the pelvis, and steady steps of
+// the commanded length from the fourth step on (the first touchdown is not a step).
 TEST(Acceptance, RecoversFromAwkwardStarts) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   const rig::JointLimits limits{};
-  const std::array<double, 8> lowest = {
-      limits.minimum.hip, limits.minimum.knee, limits.minimum.ankle, limits.minimum.toe,
-      limits.minimum.hip, limits.minimum.knee, limits.minimum.ankle, limits.minimum.toe};
-  const std::array<double, 8> highest = {
-      limits.maximum.hip, limits.maximum.knee, limits.maximum.ankle, limits.maximum.toe,
-      limits.maximum.hip, limits.maximum.knee, limits.maximum.ankle, limits.maximum.toe};
-  const std::array<double, 8> default_start = leg_angles(make_walker(ground).state());
+  const std::array<double, 8> lowest = leg_angles({limits.minimum, limits.minimum});
+  const std::array<double, 8> highest = leg_angles({limits.maximum, limits.maximum});
+  const gait::WalkerState default_state = make_walker(ground).state();
+  const std::array<double, 8> default_start =
+      leg_angles({default_state.legs[0].angles, default_state.legs[1].angles});
   constexpr std::uint64_t kSeeds = 500;
-  const double walker_time_step = gait::WalkerOptions{}.time_step;
+  const gait::WalkerOptions options;  // 0.70 m steps, 1.75 m tall
   // The largest excess (radians) past any hip, knee or ankle limit, and the pelvis's largest move
   // in one time step (m): no pop, whatever the start.
   double worst_excess = 0.0;
@@ -137,13 +137,10 @@ TEST(Acceptance, RecoversFromAwkwardStarts) {
   int outside_limits = 0;
   int unsettled = 0;
   for (std::uint64_t seed = 0; seed < kSeeds; ++seed) {
-    gait::StartPose start;
-    start.random = true;
-    start.seed = seed;
-    gait::Walker walker = make_walker(ground, 0.70, 1.75, start);
-    const double step = walker.step_length();
+    const gait::RecoveryReport r =
+        gait::walk_from_random_start(default_set(), options, seed, ground);
     // The start itself, before the first step: random angles within the joint limits.
-    const std::array<double, 8> angles = leg_angles(walker.state());
+    const std::array<double, 8> angles = leg_angles(r.start);
     starts.insert(angles);
     EXPECT_NE(angles, default_start) << "seed " << seed << " starts from the default pose";
     for (std::size_t j = 0; j < angles.size(); ++j) {
@@ -154,48 +151,11 @@ TEST(Acceptance, RecoversFromAwkwardStarts) {
                       << angles[j] << " rad, outside [" << lowest[j] << ", " << highest_here << "]";
       }
     }
-    std::vector<double> strikes;
-    double last_strike_time = -1.0;
-    // Every time step, not only every frame: what happens between frames shows in a game too.
-    const double h = walker_time_step;
-    for (int i = 0; i < static_cast<int>(std::lround(8.0 / h)); ++i) {
-      const rig::Point pelvis = walker.state().pelvis;
-      walker.advance(h);
-      largest_pelvis_move = std::max(
-          largest_pelvis_move,
-          std::hypot(walker.state().pelvis.x - pelvis.x, walker.state().pelvis.y - pelvis.y));
-      for (rig::Side side : rig::kSides) {
-        const rig::LegPoints p = walker.points(side);
-        for (const rig::Point& q : {p.hip, p.knee, p.ankle, p.heel, p.ball, p.tip}) {
-          ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y)) << "seed " << seed;
-          ASSERT_GE(q.y, ground.height(q.x) - 1e-6)
-              << "seed " << seed << " at " << walker.time() << " s";
-        }
-        const rig::LegAngles& a =
-            walker.state().legs[static_cast<std::size_t>(rig::index(side))].angles;
-        // The toes follow the ground and are not checked.
-        worst_excess =
-            std::max({worst_excess, a.hip - limits.maximum.hip, limits.minimum.hip - a.hip,
-                      a.knee - limits.maximum.knee, limits.minimum.knee - a.knee,
-                      a.ankle - limits.maximum.ankle, limits.minimum.ankle - a.ankle});
-      }
-      for (const gait::EventRecord& e : walker.events()) {
-        // Both feet touching down together (landing from a fall, or replanting both feet) is
-        // one event, not two steps: a strike within 0.1 s of the previous one is not counted.
-        if ((e.event == gait::Event::HeelStrike || e.event == gait::Event::ForefootStrike)) {
-          if (last_strike_time < 0.0 || e.time - last_strike_time >= 0.1)
-            strikes.push_back(e.where.x);
-          last_strike_time = e.time;
-        }
-      }
-      walker.clear_events();
-    }
-    bool settled = strikes.size() >= 9;
-    for (std::size_t k = 4; settled && k < 9; ++k) {
-      settled = std::abs(strikes[k] - strikes[k - 1] - step) <= 0.05 * step;
-    }
-    if (!settled && ++unsettled <= kReported) {
-      ADD_FAILURE() << "seed " << seed << " did not settle: " << strikes.size() << " steps";
+    ASSERT_TRUE(r.sound()) << "seed " << seed << ": " << r.failure;
+    worst_excess = std::max(worst_excess, r.worst_limit_excess);
+    largest_pelvis_move = std::max(largest_pelvis_move, r.largest_pelvis_move);
+    if (r.unsettled_steps(options.step_length) > 0 && ++unsettled <= kReported) {
+      ADD_FAILURE() << "seed " << seed << " did not settle: " << r.strikes.size() << " steps";
     }
   }
   EXPECT_EQ(outside_limits, 0) << "start angles outside the joint limits";
@@ -216,33 +176,11 @@ TEST(Acceptance, StylesStayAboveTheGroundFromAwkwardStarts) {
   for (const char* name : {"energetic", "heavy", "cautious"}) {
     const gait::ControllerSet set = gait::ControllerSet::builtin(name);
     for (std::uint64_t seed = 0; seed < 500; ++seed) {
-      gait::StartPose start;
-      start.random = true;
-      start.seed = seed;
-      gait::Walker walker = make_walker(ground, 0.70, 1.75, start, set);
-      const double h = gait::WalkerOptions{}.time_step;
-      int strikes = 0;
-      for (int i = 0; i < static_cast<int>(std::lround(8.0 / h)); ++i) {
-        const rig::Point pelvis = walker.state().pelvis;
-        walker.advance(h);
-        ASSERT_LT(
-            std::hypot(walker.state().pelvis.x - pelvis.x, walker.state().pelvis.y - pelvis.y), 0.1)
-            << name << " seed " << seed << " at " << walker.time() << " s";
-        for (const gait::EventRecord& e : walker.events()) {
-          strikes += e.event == gait::Event::HeelStrike || e.event == gait::Event::ForefootStrike;
-        }
-        walker.clear_events();
-        for (rig::Side side : rig::kSides) {
-          const rig::LegPoints p = walker.points(side);
-          for (const rig::Point& q : {p.hip, p.knee, p.ankle, p.heel, p.ball, p.tip}) {
-            ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y)) << name << " seed " << seed;
-            ASSERT_GE(q.y, ground.height(q.x) - 1e-6)
-                << name << " seed " << seed << " at " << walker.time() << " s";
-          }
-        }
-      }
+      const gait::RecoveryReport r = gait::walk_from_random_start(set, {}, seed, ground);
+      ASSERT_TRUE(r.sound()) << name << " seed " << seed << ": " << r.failure;
+      EXPECT_LT(r.largest_pelvis_move, 0.1) << name << " seed " << seed << ", m in a time step";
       // The slowest style takes 11 steps in 8 s; a walker stuck in a crouch took one.
-      EXPECT_GE(strikes, 8) << name << " seed " << seed << " stopped stepping";
+      EXPECT_GE(r.strikes.size(), 8u) << name << " seed " << seed << " stopped stepping";
     }
   }
 }
