@@ -1,5 +1,6 @@
 #include "fuzzygait/fuzzy/partition.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -44,8 +45,7 @@ bool knots_of(const InputVariable& v, std::vector<double>& knots, std::string* r
 
 }  // namespace
 
-std::optional<PartitionController<double>> as_partition(const Engine& engine,
-                                                        std::string* reason) {
+std::optional<PartitionController<double>> as_partition(const Engine& engine, std::string* reason) {
   PartitionController<double> c;
   const std::size_t inputs = engine.inputs.size();
   if (inputs < 1 || inputs > 2) {
@@ -60,9 +60,9 @@ std::optional<PartitionController<double>> as_partition(const Engine& engine,
     return std::nullopt;
   }
   const OutputVariable& out = engine.outputs[0];
-  const bool weighted_average =
-      out.defuzzifier && out.defuzzifier->kind == Defuzzifier::Kind::WeightedAverage &&
-      out.defuzzifier->type != Defuzzifier::WeightedType::Tsukamoto;
+  const bool weighted_average = out.defuzzifier &&
+                                out.defuzzifier->kind == Defuzzifier::Kind::WeightedAverage &&
+                                out.defuzzifier->type != Defuzzifier::WeightedType::Tsukamoto;
   if (!out.enabled || out.lock_range || out.lock_previous || !weighted_average) {
     fail(reason, "the output must be enabled, unlocked, with a WeightedAverage defuzzifier");
     return std::nullopt;
@@ -172,6 +172,34 @@ Engine with_partition(const Engine& base, const PartitionController<double>& con
     }
   }
   return out;
+}
+
+}  // namespace fuzzygait::fuzzy
+
+namespace fuzzygait::fuzzy {
+
+std::optional<PackedPartition> PackedPartition::pack(const PartitionController<double>& c) {
+  PackedPartition p;
+  const std::size_t inputs = c.input_count();
+  for (std::size_t i = 0; i < inputs; ++i) {
+    const std::vector<double>& knots = c.knots[i];
+    if (knots.size() < 2 || knots.size() > kMaxKnots) return std::nullopt;
+    std::copy(knots.begin(), knots.end(), p.knots_[i].begin());
+    p.counts_[i] = knots.size();
+  }
+  const std::size_t columns = inputs == 2 ? c.knots[1].size() : 1;
+  if (c.consequents.size() != c.knots[0].size() * columns) return std::nullopt;
+  for (std::size_t row = 0; row < c.knots[0].size(); ++row) {
+    for (std::size_t column = 0; column < columns; ++column) {
+      p.consequents_[inputs == 2 ? row * kMaxKnots + column : row] =
+          c.consequents[row * columns + column];
+    }
+  }
+  p.default_value_ = c.default_value;
+  p.shape_ = inputs == 1                             ? Shape::OneInput
+             : c.conjunction == Conjunction::Product ? Shape::Product
+                                                     : Shape::Minimum;
+  return p;
 }
 
 }  // namespace fuzzygait::fuzzy

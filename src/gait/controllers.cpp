@@ -81,6 +81,7 @@ Controller::Controller(fuzzy::Engine engine, std::string source)
                                 std::to_string(engine_.outputs.size()));
   }
   partition_ = fuzzy::as_partition(engine_);
+  if (partition_) packed_ = fuzzy::PackedPartition::pack(*partition_);
   try {
     evaluator_.emplace(engine_);
   } catch (const std::invalid_argument& e) {

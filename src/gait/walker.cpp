@@ -376,10 +376,17 @@ void Walker::lift_off(int leg) {
 }
 
 void Walker::place_pelvis(int leg) {
+  place_pelvis(leg, hip_at_origin(leg));
+}
+
+void Walker::place_pelvis(int leg, const LegPoints& at_origin) {
   const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-  const LegPoints p = leg_points(leg, {0.0, 0.0}, l.angles);
-  const Point c = contact_point(p, l.phase);
+  const Point c = contact_point(at_origin, l.phase);
   state_.pelvis = {l.anchor.x - c.x, l.anchor.y - c.y};
+}
+
+LegPoints Walker::hip_at_origin(int leg) {
+  return leg_points(leg, {0.0, 0.0}, state_.legs[static_cast<std::size_t>(leg)].angles);
 }
 
 // Two-link IK of the newly planted leg (the one not carrying the pelvis): hip and knee put its
@@ -485,10 +492,10 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
   }
 }
 
-// Height of the carrying leg's knee above the ground, its foot on its anchor.
-double Walker::knee_gap(int leg) {
+// Height of the carrying leg's knee above the ground, its foot on its anchor, from the leg's points
+// with its hip at the origin.
+double Walker::knee_gap(int leg, const LegPoints& p) const {
   const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-  const LegPoints p = leg_points(leg, {0.0, 0.0}, l.angles);
   const Point c = contact_point(p, l.phase);
   const Point knee{l.anchor.x + (p.knee.x - c.x), l.anchor.y + (p.knee.y - c.y)};
   return knee.y - terrain_->height(knee.x);
@@ -498,15 +505,16 @@ double Walker::knee_gap(int leg) {
 // its knee flexion goes back towards `known_good` (or straight) just as far as needed, a flat foot
 // staying flat.
 // The other leg, if swinging, then steps ahead of the body to take the weight, even where its
-// target was behind it (the kneeling leg's foot far behind the hip).
-void Walker::keep_knee_up(int leg, double known_good) {
+// target was behind it (the kneeling leg's foot far behind the hip). `at_origin`: the leg's
+// points with its hip at the origin; returns whether the angles changed.
+bool Walker::keep_knee_up(int leg, double known_good, const LegPoints& at_origin) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-  if (knee_gap(leg) >= 0.0) return;
+  if (knee_gap(leg, at_origin) >= 0.0) return false;
   const double slope = terrain_->slope(l.anchor.x);
   auto gap = [&](double knee) {
     l.angles.knee = knee;
     if (l.phase == Phase::Flat) l.angles.ankle = slope - shank_of(state_.pelvis_tilt, l.angles);
-    return knee_gap(leg);
+    return knee_gap(leg, hip_at_origin(leg));
   };
   const double bad = l.angles.knee;
   double good = known_good;
@@ -519,6 +527,7 @@ void Walker::keep_knee_up(int leg, double known_good) {
   if (other.phase == Phase::Swing) {
     other.target_x = std::max(other.target_x, state_.pelvis.x + 0.5 * step_length_);
   }
+  return true;
 }
 
 // How deep the heel, ball or (with_tip) toe tip is below the ground (negative when all are
@@ -657,9 +666,15 @@ void Walker::step(double h) {
     // The leg planted first carries the pelvis, through double support too: the chain grows
     // from its foot, so a planted foot never slides and the body's motion stays continuous.
     settle_foot(state_.lead, commanded[static_cast<std::size_t>(state_.lead)]);
-    keep_knee_up(state_.lead, previous[static_cast<std::size_t>(state_.lead)].knee);
-    place_pelvis(state_.lead);
+    const int lead = state_.lead;
+    LegPoints at_origin = hip_at_origin(lead);
+    if (keep_knee_up(lead, previous[static_cast<std::size_t>(lead)].knee, at_origin)) {
+      at_origin = hip_at_origin(lead);
+    }
+    place_pelvis(lead, at_origin);
   }
+  // A swinging leg placed below with the pelvis carried by the other leg: its points stand.
+  std::array<bool, 2> placed{};
   for (int leg = 0; leg < 2; ++leg) {
     if (leg == state_.lead) continue;
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
@@ -683,7 +698,13 @@ void Walker::step(double h) {
       }
       const double heel_depth = terrain_->height(p.heel.x) - p.heel.y;
       const double ball_depth = terrain_->height(p.ball.x) - p.ball.y;
-      if (heel_depth < 0.0 && ball_depth < 0.0) continue;
+      if (heel_depth < 0.0 && ball_depth < 0.0) {
+        if (state_.lead >= 0) {
+          placed[static_cast<std::size_t>(leg)] = true;
+          end_points_[static_cast<std::size_t>(leg)] = p;
+        }
+        continue;
+      }
       if (heel_depth >= ball_depth) {
         strike(leg, Phase::Heel, {p.heel.x, terrain_->height(p.heel.x)});
       } else {
@@ -714,7 +735,8 @@ void Walker::step(double h) {
   }
   for (int leg = 0; leg < 2; ++leg) {
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-    LegPoints p = leg_points(leg, state_.pelvis, l.angles);
+    LegPoints p = placed[static_cast<std::size_t>(leg)] ? end_points_[static_cast<std::size_t>(leg)]
+                                                        : leg_points(leg, state_.pelvis, l.angles);
     // A foot that has just lifted off can sit a hair below the ground once the other foot takes
     // the pelvis: lift it at once. (Its toe tip is left to the toes, which bend up below.)
     if (l.phase == Phase::Swing && state_.lead >= 0 && foot_depth(p, false) > 0.0) {

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <optional>
+#include <vector>
 
 #include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
@@ -98,7 +101,8 @@ TEST(Partition, FittedValuesGoBackIntoReadableFll) {
   const Engine e = read_fll(kTwoInputs);
   PartitionController<double> p = *as_partition(e);
   p.knots[0] = {-1.0, 0.2, 1.0};
-  for (double& c : p.consequents) c *= 0.5;
+  for (double& c : p.consequents)
+    c *= 0.5;
   const Engine fitted = with_partition(e, p);
   EXPECT_EQ(fitted.inputs[0].terms[1].parameters, (std::vector<double>{-1.0, 0.2, 1.0}));
   EXPECT_EQ(fitted.outputs[0].find_term("a")->parameters[0], 200.0);
@@ -120,9 +124,11 @@ TEST(Partition, DualNumberDerivativesEqualFiniteDifferences) {
     PartitionController<Jet> j;
     int k = 0;
     for (int i = 0; i < 2; ++i) {
-      for (std::size_t m = 0; m < p.knots[i].size(); ++m) j.knots[i].push_back(Jet(theta[k], k)), ++k;
+      for (std::size_t m = 0; m < p.knots[i].size(); ++m)
+        j.knots[i].push_back(Jet(theta[k], k)), ++k;
     }
-    for (std::size_t m = 0; m < p.consequents.size(); ++m) j.consequents.push_back(Jet(theta[k], k)), ++k;
+    for (std::size_t m = 0; m < p.consequents.size(); ++m)
+      j.consequents.push_back(Jet(theta[k], k)), ++k;
     j.default_value = Jet(0.0);
     return j;
   };
@@ -130,14 +136,17 @@ TEST(Partition, DualNumberDerivativesEqualFiniteDifferences) {
     PartitionController<double> d;
     int k = 0;
     for (int i = 0; i < 2; ++i) {
-      for (std::size_t m = 0; m < p.knots[i].size(); ++m) d.knots[i].push_back(theta[k++]);
+      for (std::size_t m = 0; m < p.knots[i].size(); ++m)
+        d.knots[i].push_back(theta[k++]);
     }
-    for (std::size_t m = 0; m < p.consequents.size(); ++m) d.consequents.push_back(theta[k++]);
+    for (std::size_t m = 0; m < p.consequents.size(); ++m)
+      d.consequents.push_back(theta[k++]);
     d.default_value = 0.0;
     return d.evaluate(x0, x1);
   };
   std::vector<double> theta;
-  for (int i = 0; i < 2; ++i) theta.insert(theta.end(), p.knots[i].begin(), p.knots[i].end());
+  for (int i = 0; i < 2; ++i)
+    theta.insert(theta.end(), p.knots[i].begin(), p.knots[i].end());
   theta.insert(theta.end(), p.consequents.begin(), p.consequents.end());
   const int inputs_at = static_cast<int>(theta.size());
   for (const auto& [x0, x1] : std::vector<std::pair<double, double>>{
@@ -166,7 +175,8 @@ TEST(Partition, ShapeDerivativesEqualFiniteDifferences) {
   using Jet = ceres::Jet<double, 4>;
   auto check = [](auto f, std::array<double, 4> at) {
     std::array<Jet, 4> j;
-    for (int k = 0; k < 4; ++k) j[static_cast<std::size_t>(k)] = Jet(at[static_cast<std::size_t>(k)], k);
+    for (int k = 0; k < 4; ++k)
+      j[static_cast<std::size_t>(k)] = Jet(at[static_cast<std::size_t>(k)], k);
     const Jet out = f(j);
     for (int k = 0; k < 4; ++k) {
       std::array<Jet, 4> up = j, down = j;
@@ -179,15 +189,75 @@ TEST(Partition, ShapeDerivativesEqualFiniteDifferences) {
   };
   check([](const std::array<Jet, 4>& v) { return shapes::gaussian(v[0], v[1], v[2], v[3]); },
         {0.3, 0.1, 0.4, 0.9});
-  check([](const std::array<Jet, 4>& v) {
-          return shapes::bell(v[0], v[1], v[2], Jet(2.5), v[3]);
-        },
+  check([](const std::array<Jet, 4>& v) { return shapes::bell(v[0], v[1], v[2], Jet(2.5), v[3]); },
         {0.3, 0.1, 0.4, 0.9});
-  check([](const std::array<Jet, 4>& v) {
-          return apply(TNorm::AlgebraicProduct, shapes::triangle(v[0], Jet(-1.0), v[1], Jet(1.0), Jet(1.0)),
-                       apply(TNorm::Minimum, v[2], v[3]));
-        },
-        {0.3, 0.1, 0.4, 0.9});
+  check(
+      [](const std::array<Jet, 4>& v) {
+        return apply(TNorm::AlgebraicProduct,
+                     shapes::triangle(v[0], Jet(-1.0), v[1], Jet(1.0), Jet(1.0)),
+                     apply(TNorm::Minimum, v[2], v[3]));
+      },
+      {0.3, 0.1, 0.4, 0.9});
 }
 
 }  // namespace
+
+namespace {
+
+bool same_bits_or_both_nan(double a, double b) {
+  return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// Inputs on and around every knot (within and beyond fuzzylite's tolerance), between knots,
+// beyond the range, and NaN.
+std::vector<double> probes(const std::vector<double>& knots) {
+  std::vector<double> x = {std::nan(""), -1e9, 1e9};
+  for (std::size_t i = 0; i < knots.size(); ++i) {
+    for (double d : {0.0, 1e-7, -1e-7, 1e-5, -1e-5})
+      x.push_back(knots[i] + d);
+    if (i + 1 < knots.size()) {
+      for (double f : {0.1, 0.37, 0.5, 0.83})
+        x.push_back(knots[i] + f * (knots[i + 1] - knots[i]));
+    }
+  }
+  return x;
+}
+
+}  // namespace
+
+// The walker's packed form gives the same bits as the controller it packs, for one input, two
+// with product and with minimum, at every edge; partitions too large to pack are refused.
+TEST(Partition, PackedFormGivesTheSameBits) {
+  PartitionController<double> two = *as_partition(read_fll(kTwoInputs));
+  two.knots[0] = {-1.0, -0.6, -0.1, 0.05, 0.3, 0.31, 0.9, 1.0};  // eight knots: the capacity
+  two.consequents.clear();
+  for (std::size_t i = 0; i < two.knots[0].size() * two.knots[1].size(); ++i) {
+    two.consequents.push_back(std::sin(1.7 * static_cast<double>(i)) * 300.0);
+  }
+  two.default_value = -7.0;
+  PartitionController<double> minimum = two;
+  minimum.conjunction = Conjunction::Minimum;
+  PartitionController<double> one = two;
+  one.knots[1].clear();
+  one.consequents.resize(one.knots[0].size());
+  int compared = 0;
+  for (const PartitionController<double>* c : {&two, &minimum, &one}) {
+    const std::optional<PackedPartition> packed = PackedPartition::pack(*c);
+    ASSERT_TRUE(packed);
+    const std::vector<double> xs1 = c->input_count() == 2 ? probes(c->knots[1]) : probes({0.0});
+    for (double x0 : probes(c->knots[0])) {
+      for (double x1 : xs1) {
+        const double expected = c->input_count() == 2 ? c->evaluate(x0, x1) : c->evaluate(x0);
+        const double got = packed->evaluate(x0, x1);
+        ASSERT_TRUE(same_bits_or_both_nan(got, expected))
+            << "inputs " << x0 << ", " << x1 << ": " << got << " vs " << expected;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 3000);
+  PartitionController<double> nine = one;
+  nine.knots[0].push_back(2.0);
+  nine.consequents.push_back(1.0);
+  EXPECT_FALSE(PackedPartition::pack(nine));
+}

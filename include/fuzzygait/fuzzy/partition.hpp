@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,8 +42,9 @@ template <class T>
     d.lower = count - 1;
     return d;
   }
+  // x < knots[count - 1], so the search stops at count - 2 at the latest.
   std::size_t i = 0;
-  while (i + 2 < count && !(x < knots[i + 1]))
+  while (!(x < knots[i + 1]))
     ++i;
   // knots[i] <= x < knots[i + 1]: the neighbouring Triangle terms (shapes::triangle) come down
   // to these sides, a degree of 1 where x is within fuzzylite's tolerance of their peak
@@ -103,6 +105,79 @@ struct PartitionController {
     if (!(weights > T(0.0))) return default_value;
     return sum / weights;
   }
+};
+
+// A PartitionController<double> of at most kMaxKnots knots per input in one flat block, with its
+// shape (one input, two with product or minimum) decided once: the walker evaluates eight a time
+// step, and following the vectors' heap pointers and re-deciding the shape was a third of each
+// call. The same operations in the same order, so the same bits as the controller it packs.
+class PackedPartition {
+ public:
+  static constexpr std::size_t kMaxKnots = 8;
+
+  // nullopt when an input has more than kMaxKnots knots (evaluate the controller itself).
+  static std::optional<PackedPartition> pack(const PartitionController<double>& controller);
+
+  double evaluate(double x0, double x1 = 0.0) const {
+    switch (shape_) {
+      case Shape::OneInput:
+        return evaluate_one(x0);
+      case Shape::Product:
+        return evaluate_two<Conjunction::Product>(x0, x1);
+      case Shape::Minimum:
+        return evaluate_two<Conjunction::Minimum>(x0, x1);
+    }
+    return default_value_;
+  }
+
+ private:
+  enum class Shape : std::uint8_t { OneInput, Product, Minimum };
+
+  // Sums a fired rule as PartitionController::evaluate does.
+  static void fire(double degree, double consequent, double& sum, double& weights) {
+    if (!(degree >= kTolerance)) return;
+    sum += degree * consequent;
+    weights += degree;
+  }
+  double result(double sum, double weights) const {
+    return weights > 0.0 ? sum / weights : default_value_;
+  }
+
+  double evaluate_one(double x) const {
+    if (detail::is_nan(x)) return default_value_;
+    const PartitionDegrees<double> a = partition_degrees(knots_[0].data(), counts_[0], x);
+    double sum = 0.0;
+    double weights = 0.0;
+    fire(a.lower_degree, consequents_[a.lower], sum, weights);
+    fire(a.upper_degree, consequents_[a.lower + 1], sum, weights);
+    return result(sum, weights);
+  }
+
+  template <Conjunction conjunction>
+  double evaluate_two(double x0, double x1) const {
+    if (detail::is_nan(x0) || detail::is_nan(x1)) return default_value_;
+    const PartitionDegrees<double> a = partition_degrees(knots_[0].data(), counts_[0], x0);
+    const PartitionDegrees<double> b = partition_degrees(knots_[1].data(), counts_[1], x1);
+    // Rows of kMaxKnots: the rule below and to the right of a last knot lies in the padding
+    // (its degree is zero, so it never fires).
+    const double* rule = &consequents_[a.lower * kMaxKnots + b.lower];
+    auto both = [](double p, double q) {
+      return conjunction == Conjunction::Product ? p * q : nan_min(p, q);
+    };
+    double sum = 0.0;
+    double weights = 0.0;
+    fire(both(a.lower_degree, b.lower_degree), rule[0], sum, weights);
+    fire(both(a.lower_degree, b.upper_degree), rule[1], sum, weights);
+    fire(both(a.upper_degree, b.lower_degree), rule[kMaxKnots], sum, weights);
+    fire(both(a.upper_degree, b.upper_degree), rule[kMaxKnots + 1], sum, weights);
+    return result(sum, weights);
+  }
+
+  std::array<double, kMaxKnots> knots_[2]{};
+  std::array<double, (kMaxKnots + 1) * kMaxKnots + 1> consequents_{};
+  std::size_t counts_[2]{};
+  double default_value_ = kNaN;
+  Shape shape_ = Shape::OneInput;
 };
 
 // Recognises an engine of the partition shape and extracts its knots and consequents: every

@@ -54,6 +54,7 @@ class Controller {
 
   double evaluate(const MetricValues& metrics, fuzzy::Workspace& workspace) const {
     const double a = metrics[static_cast<std::size_t>(inputs_[0])];
+    if (packed_) return packed_->evaluate(a, metrics[static_cast<std::size_t>(inputs_[1])]);
     if (partition_) {
       return input_count_ == 1
                  ? partition_->evaluate(a)
@@ -77,6 +78,7 @@ class Controller {
   std::array<Metric, 2> inputs_{};
   std::size_t input_count_ = 0;
   std::optional<fuzzy::PartitionController<double>> partition_;
+  std::optional<fuzzy::PackedPartition> packed_;  // partition_ in one block, when it fits
   std::optional<fuzzy::Evaluator> evaluator_;
 };
 

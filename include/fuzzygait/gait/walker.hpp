@@ -144,12 +144,14 @@ class Walker {
   void lift_off(int leg);
   void hand_over(int leg);
   void place_pelvis(int leg);
+  void place_pelvis(int leg, const rig::LegPoints& at_origin);
+  rig::LegPoints hip_at_origin(int leg);
   bool close_chain(int leg);
   void settle_foot(int leg, const rig::LegAngles& commanded);
   double stance_target() const;
   double foot_depth(const rig::LegPoints& points, bool with_tip = true) const;
-  double knee_gap(int leg);
-  void keep_knee_up(int leg, double known_good);
+  double knee_gap(int leg, const rig::LegPoints& at_origin) const;
+  bool keep_knee_up(int leg, double known_good, const rig::LegPoints& at_origin);
   void clear_ground(int leg, double max_change, double margin, bool with_tip = true);
   void update_metrics(int leg, const rig::LegPoints& points, MetricValues& metrics);
   rig::LegPoints leg_points(int leg, rig::Point hip, const rig::LegAngles& angles);
