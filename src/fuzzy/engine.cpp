@@ -1,19 +1,15 @@
 #include "fuzzygait/fuzzy/engine.hpp"
 
 #include <array>
-#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
+#include "fuzzygait/fuzzy/compare.hpp"
 #include "fuzzygait/fuzzy/formula.hpp"
 #include "text.hpp"
 
 namespace fuzzygait::fuzzy {
 namespace {
-
-bool same(double a, double b) {
-  return a == b || (std::isnan(a) && std::isnan(b));
-}
 
 // The element of `list` with that name (variables, terms), or nullptr.
 template <class Named>
@@ -146,7 +142,7 @@ std::string Activation::text() const {
 
 bool Activation::operator==(const Activation& other) const {
   return kind == other.kind && number_of_rules == other.number_of_rules &&
-         same(threshold, other.threshold) && comparison == other.comparison;
+         is_same_value(threshold, other.threshold) && comparison == other.comparison;
 }
 
 const Term* InputVariable::find_term(std::string_view term_name) const {
@@ -159,21 +155,21 @@ const Term* OutputVariable::find_term(std::string_view term_name) const {
 
 bool InputVariable::operator==(const InputVariable& other) const {
   return name == other.name && description == other.description && enabled == other.enabled &&
-         same(minimum, other.minimum) && same(maximum, other.maximum) &&
+         is_same_value(minimum, other.minimum) && is_same_value(maximum, other.maximum) &&
          lock_range == other.lock_range && terms == other.terms;
 }
 
 bool OutputVariable::operator==(const OutputVariable& other) const {
   return name == other.name && description == other.description && enabled == other.enabled &&
-         same(minimum, other.minimum) && same(maximum, other.maximum) &&
+         is_same_value(minimum, other.minimum) && is_same_value(maximum, other.maximum) &&
          lock_range == other.lock_range && aggregation == other.aggregation &&
-         defuzzifier == other.defuzzifier && same(default_value, other.default_value) &&
+         defuzzifier == other.defuzzifier && is_same_value(default_value, other.default_value) &&
          lock_previous == other.lock_previous && terms == other.terms;
 }
 
 bool Rule::operator==(const Rule& other) const {
   return propositions == other.propositions && antecedent == other.antecedent &&
-         conclusions == other.conclusions && same(weight, other.weight);
+         conclusions == other.conclusions && is_same_value(weight, other.weight);
 }
 
 std::string Rule::text() const {

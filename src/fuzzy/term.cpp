@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fuzzygait/fuzzy/compare.hpp"
 #include "fuzzygait/fuzzy/formula.hpp"
 #include "text.hpp"
 
@@ -114,11 +115,11 @@ std::optional<double> parse_scalar(std::string_view text) {
 }
 
 bool Term::operator==(const Term& other) const {
-  auto same = [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); };
   if (name != other.name || kind != other.kind || formula != other.formula) return false;
-  if (!same(height, other.height) || parameters.size() != other.parameters.size()) return false;
+  if (!is_same_value(height, other.height) || parameters.size() != other.parameters.size())
+    return false;
   for (std::size_t i = 0; i < parameters.size(); ++i) {
-    if (!same(parameters[i], other.parameters[i])) return false;
+    if (!is_same_value(parameters[i], other.parameters[i])) return false;
   }
   return true;
 }

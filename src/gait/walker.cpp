@@ -722,8 +722,11 @@ void Walker::step(double h) {
       hand_over(state_.lead);
       break;
     }
+    const Phase closed_in = l.phase;
     settle_foot(leg, commanded[static_cast<std::size_t>(leg)]);
-    bool reached = close_chain(leg);
+    // On the heel or the ball with no change of phase, the foot's rules changed nothing the
+    // chain depends on (a ball's toes rest as the chain left them): it is still closed.
+    bool reached = (l.phase == closed_in && l.phase != Phase::Flat) || close_chain(leg);
     if (reached && l.phase == Phase::Ball &&
         foot_of(tilt, l.angles) >= terrain_->slope(l.anchor.x)) {
       // The chain closed with the heel back on the ground.

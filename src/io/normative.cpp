@@ -16,17 +16,10 @@ gait::Normative read_normative_csv(std::istream& in, std::string_view source) {
   std::string line;
   if (!std::getline(in, line)) throw fuzzy::ParseError(where, 1, "the file is empty");
   const std::vector<std::string> header = detail::split_csv_line(line);
-  const char* wanted[] = {"percent",    "hip_mean", "hip_sd",           "knee_mean",     "knee_sd",
-                          "ankle_mean", "ankle_sd", "pelvis_tilt_mean", "pelvis_tilt_sd"};
-  std::vector<std::size_t> column;
-  for (const char* w : wanted) {
-    std::size_t c = 0;
-    while (c < header.size() && header[c] != w)
-      ++c;
-    if (c == header.size())
-      throw fuzzy::ParseError(where, 1, std::string("missing column '") + w + "'");
-    column.push_back(c);
-  }
+  const std::string wanted[] = {"percent",   "hip_mean",         "hip_sd",
+                                "knee_mean", "knee_sd",          "ankle_mean",
+                                "ankle_sd",  "pelvis_tilt_mean", "pelvis_tilt_sd"};
+  const std::vector<std::size_t> column = detail::required_columns(header, wanted, where);
   std::vector<std::array<double, 9>> rows;
   int number = 1;
   while (std::getline(in, line)) {
@@ -38,8 +31,7 @@ gait::Normative read_normative_csv(std::istream& in, std::string_view source) {
       const std::optional<double> v =
           column[k] < cells.size() ? fuzzy::parse_scalar(cells[column[k]]) : std::nullopt;
       if (!v || !std::isfinite(*v)) {
-        throw fuzzy::ParseError(where, number,
-                                std::string("column '") + wanted[k] + "' is not a finite number");
+        throw fuzzy::ParseError(where, number, "column '" + wanted[k] + "' is not a finite number");
       }
       row[k] = *v;
     }

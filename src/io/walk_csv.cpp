@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <istream>
-#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -80,15 +79,7 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
   std::string line;
   if (!std::getline(in, line)) throw fuzzy::ParseError(where, 1, "the file is empty");
   const std::vector<std::string> columns = detail::split_csv_line(line);
-  std::map<std::string, std::size_t> index;
-  for (std::size_t i = 0; i < columns.size(); ++i)
-    index[columns[i]] = i;
-  std::vector<std::size_t> wanted;
-  for (const std::string& h : header()) {
-    const auto it = index.find(h);
-    if (it == index.end()) throw fuzzy::ParseError(where, 1, "missing column '" + h + "'");
-    wanted.push_back(it->second);
-  }
+  const std::vector<std::size_t> wanted = detail::required_columns(columns, header(), where);
   gait::Motion motion;
   int number = 1;
   while (std::getline(in, line)) {

@@ -119,13 +119,8 @@ INSTANTIATE_TEST_SUITE_P(Debian, FuzzyliteExample, ::testing::ValuesIn(example_e
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(FuzzyliteExample);
 
 TEST(FuzzyliteExamples, AllEighteenDatasetsArePresent) {
-  if (!fs::exists(FUZZYLITE_EXAMPLES_DIR)) {
-    if constexpr (FUZZYGAIT_REQUIRE_FUZZYLITE != 0) {
-      FAIL() << "fuzzylite examples not installed in " << FUZZYLITE_EXAMPLES_DIR
-             << " (FUZZYGAIT_REQUIRE_FUZZYLITE is ON)";
-    }
-    GTEST_SKIP() << "fuzzylite examples not installed";
-  }
+  // (FUZZYGAIT_REQUIRE_FUZZYLITE stops the configuration instead when they are missing.)
+  if (!fs::exists(FUZZYLITE_EXAMPLES_DIR)) GTEST_SKIP() << "fuzzylite examples not installed";
   EXPECT_EQ(example_engines().size(), 18u);
 }
 

@@ -133,7 +133,7 @@ TEST(CycleAcceleration, TheWalkReportsItBesidePeoples) {
   for (const gait::JointSmoothness& s : r.smoothness) {
     EXPECT_TRUE(std::isfinite(s.rms_jerk));
     EXPECT_GT(s.rms_acceleration, 0.0);
-    EXPECT_GE(s.max_jerk, s.rms_jerk);
+    EXPECT_GT(s.rms_jerk, 0.0);
   }
   const std::string text = gait::to_text(r);
   EXPECT_NE(text.find("knee   acceleration RMS"), std::string::npos) << text;

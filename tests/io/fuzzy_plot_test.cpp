@@ -196,11 +196,8 @@ TEST(FuzzyPlot, RejectsBadOptions) {
 }
 
 TEST(FuzzyPlot, FuzzyliteExamples) {
+  // (FUZZYGAIT_REQUIRE_FUZZYLITE stops the configuration instead when they are missing.)
   if (!std::filesystem::exists(kExamples / "mamdani/AllTerms.fll")) {
-    if constexpr (FUZZYGAIT_REQUIRE_FUZZYLITE != 0) {
-      FAIL() << "fuzzylite's examples are not installed in " << kExamples
-             << " (FUZZYGAIT_REQUIRE_FUZZYLITE is ON)";
-    }
     GTEST_SKIP() << "fuzzylite's examples are not installed";
   }
   for (const char* name :

@@ -1,6 +1,6 @@
 // Learning: CMA-ES on functions whose minimum is known, the set's parameters (round trip,
-// rounding), the penalty for words that stop meaning what they say, the walk cost's terms, and a
-// short tune that must not make the set worse.
+// rounding), the penalty for words that stop meaning what they say, the walk cost's terms, a
+// short tune that must not make the set worse, and the polish of the rounded values.
 #include "fuzzygait/learn/tune.hpp"
 
 #include <gtest/gtest.h>
@@ -171,6 +171,42 @@ TEST(Tune, AShortTuneNeverEndsWorseThanItsStart) {
   const learn::TuneResult again = learn::tune(test::default_set(), o);
   EXPECT_EQ(again.cost, r.cost);
   EXPECT_EQ(outputs(again.rounded), outputs(r.rounded));
+}
+
+TEST(Tune, PolishingImprovesTheRoundedValuesItWritesOut) {
+  const gait::Normative free = io::load_normative("schwartz2008_free");
+  learn::TuneOptions o;
+  o.conditions = {learn::main_condition(free)};
+  o.generations = 2;
+  o.polish_generations = 3;
+  o.digits = 3;
+  o.threads = 2;
+  o.seed = 2;
+  o.sigma = 0.05;
+  // A start away from the optimum, its values already three digits.
+  const learn::SetParameters p(test::default_set());
+  std::vector<double> v = p.values();
+  v[0] += 0.5;
+  const gait::ControllerSet start = p.rounded(v, o.digits);
+  learn::TuneOptions unpolished = o;
+  unpolished.polish_generations = 0;
+  const learn::TuneResult tuned = learn::tune(start, unpolished);
+  std::vector<int> generations;
+  o.progress = [&generations](int generation, double) { generations.push_back(generation); };
+  const learn::TuneResult r = learn::tune(start, o);
+  // The polish's generations are counted on from the tune's.
+  EXPECT_EQ(generations, (std::vector<int>{1, 2, 3, 4, 5}));
+  // Polishing starts from the tuned values rounded, never ends worse than them, and here
+  // improves on them.
+  const double rounded_cost = learn::walk_cost(tuned.rounded, o);
+  EXPECT_LE(r.cost, rounded_cost);
+  EXPECT_NE(outputs(r.set), outputs(tuned.rounded));
+  // The cost is that of the set returned, whose values are the rounded ones written out.
+  EXPECT_EQ(r.cost, learn::walk_cost(r.set, o));
+  EXPECT_EQ(outputs(r.rounded), outputs(r.set));
+  const learn::SetParameters polished(r.set);
+  EXPECT_EQ(outputs(polished.rounded(polished.values(), o.digits)), outputs(r.set));
+  EXPECT_GT(r.evaluations, tuned.evaluations);
 }
 
 }  // namespace

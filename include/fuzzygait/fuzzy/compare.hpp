@@ -1,5 +1,6 @@
 // Tolerant comparisons and NaN-aware min/max with the exact semantics of fuzzylite 6, so that
-// every branch a membership function or a defuzzifier takes is the one fuzzylite takes.
+// every branch a membership function or a defuzzifier takes is the one fuzzylite takes, and the
+// exact equality the value types' operator== use.
 // Templated on the scalar so that automatic differentiation (dual numbers, Ceres Jets) flows
 // through the same code.
 #pragma once
@@ -43,6 +44,13 @@ bool is_gt(const T& a, const T& b) {
 template <class T>
 bool is_ge(const T& a, const T& b) {
   return is_eq(a, b) || a > b;
+}
+
+// Exactly equal, or both NaN (no tolerance): the equality of terms, variables and rules, for
+// which a NaN parameter equals itself.
+template <class T>
+bool is_same_value(const T& a, const T& b) {
+  return a == b || (detail::is_nan(a) && detail::is_nan(b));
 }
 
 // min/max that ignore a NaN operand (fuzzylite's Op::min / Op::max).
