@@ -174,10 +174,6 @@ Engine with_partition(const Engine& base, const PartitionController<double>& con
   return out;
 }
 
-}  // namespace fuzzygait::fuzzy
-
-namespace fuzzygait::fuzzy {
-
 std::optional<PackedPartition> PackedPartition::pack(const PartitionController<double>& c) {
   PackedPartition p;
   const std::size_t inputs = c.input_count();

@@ -165,8 +165,7 @@ TEST(Acceptance, RecoversFromAwkwardStarts) {
   // (the chain snapping onto a foot put down far away) moved it 0.3-0.8 m.
   EXPECT_LT(largest_pelvis_move, 0.075) << "m, the pelvis's largest move in a time step";
   EXPECT_EQ(unsettled, 0) << "of " << kSeeds << " starts did not settle";
-  // Every seed its own start (seeds are hashed one-to-one into the generator's state, so no two
-  // seeds draw the same sequence).
+  // Every seed its own start (seeds are hashed one-to-one into the generator's state).
   EXPECT_EQ(starts.size(), kSeeds) << "distinct starts of " << kSeeds;
 }
 

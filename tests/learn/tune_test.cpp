@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -154,14 +155,22 @@ TEST(WalkCost, TheAccelerationLimitCostsOnlyWhenSet) {
   EXPECT_LT(limited - unlimited, 60.0);
 }
 
+// A tune of a few generations on the main walk against `reference` (which must outlive the
+// options), small steps: quick enough for a unit test.
+learn::TuneOptions short_tune(const gait::Normative& reference, int generations,
+                              std::uint64_t seed) {
+  learn::TuneOptions o;
+  o.conditions = {learn::main_condition(reference)};
+  o.generations = generations;
+  o.threads = 2;
+  o.seed = seed;
+  o.sigma = 0.05;
+  return o;
+}
+
 TEST(Tune, AShortTuneNeverEndsWorseThanItsStart) {
   const gait::Normative free = io::load_normative("schwartz2008_free");
-  learn::TuneOptions o;
-  o.conditions = {learn::main_condition(free)};
-  o.generations = 4;
-  o.threads = 2;
-  o.seed = 3;
-  o.sigma = 0.05;
+  const learn::TuneOptions o = short_tune(free, 4, 3);
   const double start = learn::walk_cost(test::default_set(), o);
   const learn::TuneResult r = learn::tune(test::default_set(), o);
   EXPECT_LE(r.cost, start);
@@ -175,14 +184,9 @@ TEST(Tune, AShortTuneNeverEndsWorseThanItsStart) {
 
 TEST(Tune, PolishingImprovesTheRoundedValuesItWritesOut) {
   const gait::Normative free = io::load_normative("schwartz2008_free");
-  learn::TuneOptions o;
-  o.conditions = {learn::main_condition(free)};
-  o.generations = 2;
+  learn::TuneOptions o = short_tune(free, 2, 2);
   o.polish_generations = 3;
   o.digits = 3;
-  o.threads = 2;
-  o.seed = 2;
-  o.sigma = 0.05;
   // A start away from the optimum, its values already three digits.
   const learn::SetParameters p(test::default_set());
   std::vector<double> v = p.values();

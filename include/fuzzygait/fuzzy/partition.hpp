@@ -59,6 +59,50 @@ template <class T>
 
 enum class Conjunction { Product, Minimum };
 
+// The rules around (x0, x1) fired and averaged, for every form of partition controller: the same
+// result as the general Evaluator on the equivalent engine (rules fire when their degree exceeds
+// fuzzylite's tolerance, sums run in rule order); only the (at most four) rules around the inputs
+// can fire. Without two_inputs, knots1 and count1 are not read. The consequent of terms (i, j) is
+// at consequents[i * row_stride + j].
+template <class T>
+[[gnu::always_inline]] inline T evaluate_partition(bool two_inputs, const T* knots0,
+                                                   std::size_t count0, const T* knots1,
+                                                   std::size_t count1, const T* consequents,
+                                                   std::size_t row_stride, Conjunction conjunction,
+                                                   const T& default_value, const T& x0,
+                                                   const T& x1) {
+  if (detail::is_nan(x0) || (two_inputs && detail::is_nan(x1))) return default_value;
+  const PartitionDegrees<T> a = partition_degrees(knots0, count0, x0);
+  T sum(0.0);
+  T weights(0.0);
+  // is_gt(degree, 0): for any degree, NaN included, the same as degree >= kTolerance.
+  auto fire = [&](const T& degree, std::size_t rule) {
+    if (!(degree >= T(kTolerance))) return;
+    sum += degree * consequents[rule];
+    weights += degree;
+  };
+  if (!two_inputs) {
+    fire(a.lower_degree, a.lower);
+    fire(a.upper_degree, a.lower + 1);
+  } else {
+    const PartitionDegrees<T> b = partition_degrees(knots1, count1, x1);
+    const std::size_t rule = a.lower * row_stride + b.lower;
+    if (conjunction == Conjunction::Product) {
+      fire(T(a.lower_degree * b.lower_degree), rule);
+      fire(T(a.lower_degree * b.upper_degree), rule + 1);
+      fire(T(a.upper_degree * b.lower_degree), rule + row_stride);
+      fire(T(a.upper_degree * b.upper_degree), rule + row_stride + 1);
+    } else {
+      fire(nan_min(a.lower_degree, b.lower_degree), rule);
+      fire(nan_min(a.lower_degree, b.upper_degree), rule + 1);
+      fire(nan_min(a.upper_degree, b.lower_degree), rule + row_stride);
+      fire(nan_min(a.upper_degree, b.upper_degree), rule + row_stride + 1);
+    }
+  }
+  if (!(weights > T(0.0))) return default_value;
+  return sum / weights;
+}
+
 template <class T>
 struct PartitionController {
   std::vector<T> knots[2];     // knots of input 0 and (optionally) input 1
@@ -68,49 +112,18 @@ struct PartitionController {
 
   std::size_t input_count() const { return knots[1].empty() ? 1 : 2; }
 
-  // Same result as the general Evaluator on the equivalent engine: rules fire when their degree
-  // exceeds fuzzylite's tolerance, and sums run in rule order. Only the (at most four) rules
-  // around the inputs can fire.
   T evaluate(const T& x0, const T& x1 = T(0.0)) const {
-    const bool two_inputs = !knots[1].empty();
-    if (detail::is_nan(x0) || (two_inputs && detail::is_nan(x1))) return default_value;
-    const PartitionDegrees<T> a = partition_degrees(knots[0].data(), knots[0].size(), x0);
-    T sum(0.0);
-    T weights(0.0);
-    // is_gt(degree, 0): for any degree, NaN included, the same as degree >= kTolerance.
-    auto fire = [&](const T& degree, std::size_t rule) {
-      if (!(degree >= T(kTolerance))) return;
-      sum += degree * consequents[rule];
-      weights += degree;
-    };
-    if (!two_inputs) {
-      fire(a.lower_degree, a.lower);
-      fire(a.upper_degree, a.lower + 1);
-    } else {
-      const PartitionDegrees<T> b = partition_degrees(knots[1].data(), knots[1].size(), x1);
-      const std::size_t columns = knots[1].size();
-      const std::size_t rule = a.lower * columns + b.lower;
-      if (conjunction == Conjunction::Product) {
-        fire(T(a.lower_degree * b.lower_degree), rule);
-        fire(T(a.lower_degree * b.upper_degree), rule + 1);
-        fire(T(a.upper_degree * b.lower_degree), rule + columns);
-        fire(T(a.upper_degree * b.upper_degree), rule + columns + 1);
-      } else {
-        fire(nan_min(a.lower_degree, b.lower_degree), rule);
-        fire(nan_min(a.lower_degree, b.upper_degree), rule + 1);
-        fire(nan_min(a.upper_degree, b.lower_degree), rule + columns);
-        fire(nan_min(a.upper_degree, b.upper_degree), rule + columns + 1);
-      }
-    }
-    if (!(weights > T(0.0))) return default_value;
-    return sum / weights;
+    return evaluate_partition(!knots[1].empty(), knots[0].data(), knots[0].size(), knots[1].data(),
+                              knots[1].size(), consequents.data(),
+                              knots[1].empty() ? 1 : knots[1].size(), conjunction, default_value,
+                              x0, x1);
   }
 };
 
 // A PartitionController<double> of at most kMaxKnots knots per input in one flat block, with its
 // shape (one input, two with product or minimum) decided once: the walker evaluates eight a time
 // step, and following the vectors' heap pointers and re-deciding the shape was a third of each
-// call. The same operations in the same order, so the same bits as the controller it packs.
+// call. The same evaluation (evaluate_partition), so the same bits as the controller it packs.
 class PackedPartition {
  public:
   static constexpr std::size_t kMaxKnots = 8;
@@ -121,11 +134,11 @@ class PackedPartition {
   double evaluate(double x0, double x1 = 0.0) const {
     switch (shape_) {
       case Shape::OneInput:
-        return evaluate_one(x0);
+        return evaluate_as(false, 1, Conjunction::Product, x0, x1);
       case Shape::Product:
-        return evaluate_two<Conjunction::Product>(x0, x1);
+        return evaluate_as(true, kMaxKnots, Conjunction::Product, x0, x1);
       case Shape::Minimum:
-        return evaluate_two<Conjunction::Minimum>(x0, x1);
+        return evaluate_as(true, kMaxKnots, Conjunction::Minimum, x0, x1);
     }
     return default_value_;
   }
@@ -133,48 +146,17 @@ class PackedPartition {
  private:
   enum class Shape : std::uint8_t { OneInput, Product, Minimum };
 
-  // Sums a fired rule as PartitionController::evaluate does.
-  static void fire(double degree, double consequent, double& sum, double& weights) {
-    if (!(degree >= kTolerance)) return;
-    sum += degree * consequent;
-    weights += degree;
-  }
-  double result(double sum, double weights) const {
-    return weights > 0.0 ? sum / weights : default_value_;
-  }
-
-  double evaluate_one(double x) const {
-    if (detail::is_nan(x)) return default_value_;
-    const PartitionDegrees<double> a = partition_degrees(knots_[0].data(), counts_[0], x);
-    double sum = 0.0;
-    double weights = 0.0;
-    fire(a.lower_degree, consequents_[a.lower], sum, weights);
-    fire(a.upper_degree, consequents_[a.lower + 1], sum, weights);
-    return result(sum, weights);
-  }
-
-  template <Conjunction conjunction>
-  double evaluate_two(double x0, double x1) const {
-    if (detail::is_nan(x0) || detail::is_nan(x1)) return default_value_;
-    const PartitionDegrees<double> a = partition_degrees(knots_[0].data(), counts_[0], x0);
-    const PartitionDegrees<double> b = partition_degrees(knots_[1].data(), counts_[1], x1);
-    // Rows of kMaxKnots: the rule below and to the right of a last knot lies in the padding
-    // (its degree is zero, so it never fires).
-    const double* rule = &consequents_[a.lower * kMaxKnots + b.lower];
-    auto both = [](double p, double q) {
-      return conjunction == Conjunction::Product ? p * q : nan_min(p, q);
-    };
-    double sum = 0.0;
-    double weights = 0.0;
-    fire(both(a.lower_degree, b.lower_degree), rule[0], sum, weights);
-    fire(both(a.lower_degree, b.upper_degree), rule[1], sum, weights);
-    fire(both(a.upper_degree, b.lower_degree), rule[kMaxKnots], sum, weights);
-    fire(both(a.upper_degree, b.upper_degree), rule[kMaxKnots + 1], sum, weights);
-    return result(sum, weights);
+  // One straight path per shape (evaluate_partition is inlined with the constants).
+  double evaluate_as(bool two_inputs, std::size_t row_stride,
+                                            Conjunction conjunction, double x0, double x1) const {
+    return evaluate_partition(two_inputs, knots_[0].data(), counts_[0], knots_[1].data(),
+                              counts_[1], consequents_.data(), row_stride, conjunction,
+                              default_value_, x0, x1);
   }
 
   std::array<double, kMaxKnots> knots_[2]{};
-  std::array<double, (kMaxKnots + 1) * kMaxKnots + 1> consequents_{};
+  // Rows of kMaxKnots for two inputs, one row for one input.
+  std::array<double, kMaxKnots * kMaxKnots> consequents_{};
   std::size_t counts_[2]{};
   double default_value_ = kNaN;
   Shape shape_ = Shape::OneInput;
