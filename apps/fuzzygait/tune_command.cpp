@@ -74,7 +74,8 @@ void add_tune_command(CLI::App& app) {
   tune->add_option("--faster", o->faster, "Reference for 0.85 m steps with --grid");
   tune->add_flag("--grid", o->grid,
                  "Also walk 0.55 and 0.85 m steps against the slower and faster references, and "
-                 "the shortest and longest steps for small and tall bodies for contact and timing");
+                 "the rest of the acceptance grid (steps 0.50-0.85 m, statures 1.50-2.00 m) for "
+                 "contact and timing");
   tune->callback([o]() {
     const gait::ControllerSet start = o->controllers.empty()
                                           ? gait::ControllerSet::builtin(o->style)

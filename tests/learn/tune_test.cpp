@@ -5,9 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fuzzygait/gait/controllers.hpp"
@@ -138,6 +141,40 @@ TEST(WordPenalty, ShippedSetsKeepTheirWordsAndABrokenWordCosts) {
   EXPECT_GT(learn::word_penalty(p.apply(v)), learn::word_penalty(base) + 1.0);
 }
 
+TEST(WalkCost, WordsCostSteeplyPastTheShippedSetsBound) {
+  // No walks: the cost is the words' alone, 10 a unit, and 100 more a unit past 0.9.
+  const learn::TuneOptions o;
+  const learn::SetParameters p(test::default_set());
+  for (const double factor : {1.0, 1.3, 3.0}) {
+    std::vector<double> v = p.values();
+    for (double& x : v)
+      x *= factor;
+    const gait::ControllerSet set = p.apply(v);
+    const double words = learn::word_penalty(set);
+    EXPECT_DOUBLE_EQ(learn::walk_cost(set, o), 10.0 * words + 100.0 * std::max(0.0, words - 0.9))
+        << factor;
+  }
+}
+
+TEST(WalkCost, TheGridWalksTheWholeAcceptanceGrid) {
+  const gait::Normative free = io::load_normative("schwartz2008_free");
+  const gait::Normative slow = io::load_normative("schwartz2008_slow");
+  const gait::Normative fast = io::load_normative("schwartz2008_fast");
+  const std::vector<learn::WalkCondition> grid = learn::grid_conditions(free, slow, fast);
+  std::set<std::pair<double, double>> walked;
+  for (const learn::WalkCondition& c : grid)
+    walked.insert({c.step_length, c.stature});
+  for (const double step : {0.50, 0.60, 0.70, 0.85}) {
+    for (const double stature : {1.50, 1.75, 2.00}) {
+      EXPECT_EQ(walked.count({step, stature}), 1u) << step << " m at " << stature << " m";
+    }
+  }
+  EXPECT_EQ(walked.count({0.55, 1.75}), 1u);
+  EXPECT_EQ(grid.size(), 13u);
+  EXPECT_EQ(grid.front().reference, &free);
+  EXPECT_TRUE(grid.front().enforce_bounds);
+}
+
 TEST(WalkCost, TheAccelerationLimitCostsOnlyWhenSet) {
   const gait::Normative free = io::load_normative("schwartz2008_free");
   learn::TuneOptions o;
@@ -147,8 +184,8 @@ TEST(WalkCost, TheAccelerationLimitCostsOnlyWhenSet) {
   EXPECT_NE(report.find("acceleration x"), std::string::npos) << report;
   o.acceleration_ratio_max = 100.0;
   EXPECT_EQ(learn::walk_cost(test::default_set(), o), unlimited);
-  // The default's thigh and knee move about 3.9 and 3.0 times as hard as people's: a limit of
-  // 1 costs 10 per unit over, about 49.
+  // The default's thigh and knee move about 3.7 and 2.9 times as hard as people's: a limit of
+  // 1 costs 10 per unit over, about 46.
   o.acceleration_ratio_max = 1.0;
   const double limited = learn::walk_cost(test::default_set(), o);
   EXPECT_GT(limited - unlimited, 40.0);

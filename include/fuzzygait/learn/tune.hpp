@@ -29,9 +29,9 @@ struct WalkCondition {
 // The main condition: a 1.75 m adult's 0.70 m steps against `reference`, bounds enforced.
 WalkCondition main_condition(const gait::Normative& reference);
 // The main condition and the step/stature grid around it: the 1.75 m adult's 0.55 and 0.85 m
-// steps against the slower and faster references (realism weight 0.3), its 0.50 m steps, and the
-// grid's corners, the shortest and the longest steps for the leg (0.50 m for a 2.00 m body, 0.85
-// m for a 1.50 m one); those three for contact and timing only.
+// steps against the slower and faster references (realism weight 0.3), and the rest of the
+// acceptance grid (steps 0.50, 0.60, 0.70, 0.85 m for statures 1.50, 1.75, 2.00 m) for contact
+// and timing only.
 std::vector<WalkCondition> grid_conditions(const gait::Normative& reference,
                                            const gait::Normative& slower,
                                            const gait::Normative& faster);
