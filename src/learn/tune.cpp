@@ -220,8 +220,7 @@ std::vector<std::uint64_t> recovery_seeds(int count) {
 double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std::string* report) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   const double words = word_penalty(set);
-  // Steep past 0.9: a shipped set keeps its words under 1 (the shipped sets' test).
-  double total = 10.0 * words + 100.0 * std::max(0.0, words - 0.9);
+  double total = 10.0 * words + 100.0 * std::max(0.0, words - options.word_penalty_max);
   if (report && words > 0.0) {
     *report += "words against their meaning: penalty " + std::to_string(words) + "\n";
   }
@@ -239,8 +238,8 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
       auto over = [](double value, double low, double high) {
         return std::max(0.0, low - value) + std::max(0.0, value - high);
       };
-      // Steep past 2.5 %, so that the acceptance bound of 3 % holds after rounding.
-      cost += 2.0 * r.step_error_percent + 20.0 * std::max(0.0, r.step_error_percent - 2.5);
+      cost += 2.0 * r.step_error_percent +
+              20.0 * std::max(0.0, r.step_error_percent - options.step_error_max);
       cost += 200.0 * std::max(0.0, 0.012 - r.min_toe_clearance) / 0.012;
       cost += 100.0 * r.cycle_time_sd + 100.0 * r.step_length_sd / c.step_length;
       cost += 2.0 * over(r.stance_percent, options.stance_min, options.stance_max);
@@ -250,10 +249,9 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
       // Velocities must not jump where a phase hands a joint to another controller.
       cost += 10.0 *
               std::max(0.0, r.max_velocity_jump / std::max(r.typical_velocity_change, 1.0) - 1.2);
-      // A foot point near the ground that moves along it is a slip (the walk checker's rule);
-      // past the acceptance bound (1 mm a frame; 0.9 here, so rounding keeps it) it is steep.
+      // A foot point near the ground that moves along it is a slip (the walk checker's rule).
       cost += 2000.0 * std::max(0.0, r.max_slip - 0.0005) +
-              20000.0 * std::max(0.0, r.max_slip - 0.0009) + 1000.0 * r.max_penetration;
+              20000.0 * std::max(0.0, r.max_slip - options.slip_max) + 1000.0 * r.max_penetration;
       if (c.reference) {
         double realism = 2.0 * (r.thigh_score->rmse + r.knee_score->rmse + r.ankle_score->rmse);
         realism += 10.0 * (2.0 - r.thigh_score->pearson - r.knee_score->pearson) +

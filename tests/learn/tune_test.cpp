@@ -144,6 +144,7 @@ TEST(WordPenalty, ShippedSetsKeepTheirWordsAndABrokenWordCosts) {
 TEST(WalkCost, WordsCostSteeplyPastTheShippedSetsBound) {
   // No walks: the cost is the words' alone, 10 a unit, and 100 more a unit past 0.9.
   const learn::TuneOptions o;
+  ASSERT_EQ(o.word_penalty_max, 0.9);
   const learn::SetParameters p(test::default_set());
   for (const double factor : {1.0, 1.3, 3.0}) {
     std::vector<double> v = p.values();
@@ -153,6 +154,9 @@ TEST(WalkCost, WordsCostSteeplyPastTheShippedSetsBound) {
     const double words = learn::word_penalty(set);
     EXPECT_DOUBLE_EQ(learn::walk_cost(set, o), 10.0 * words + 100.0 * std::max(0.0, words - 0.9))
         << factor;
+    if (factor == 3.0) {
+      EXPECT_GT(words, 0.9);  // the steep part is exercised
+    }
   }
 }
 

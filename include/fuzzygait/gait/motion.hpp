@@ -38,10 +38,9 @@ bool begins_strike(const Motion& motion, std::size_t i, rig::Side side,
 
 // Runs a walker until `cycles` left gait cycles have completed after the first, i.e. until the
 // left foot has struck (begins_strike) cycles + 2 times (evaluate() skips the cycle before the
-// second strike),
-// sampling it at `fps` (frame 0 is the start pose). Throws std::runtime_error when that has not
-// happened within 3 s per cycle, cycles + 2 of them; std::invalid_argument for an fps outside
-// 1..10000 or fewer than one cycle.
+// second strike), sampling it at `fps` (frame 0 is the start pose). Throws std::runtime_error when
+// that has not happened within 3 s per cycle, cycles + 2 of them; std::invalid_argument for an fps
+// outside 1..10000 or fewer than one cycle.
 Motion record_cycles(Walker& walker, int cycles, double fps);
 
 }  // namespace fuzzygait::gait

@@ -22,8 +22,8 @@ struct RecoveryReport {
   double worst_limit_excess = 0.0;   // rad past a hip, knee or ankle limit (toes follow the ground)
   double largest_pelvis_move = 0.0;  // m, in one time step
   // Where the feet struck (the heel's x; for a forefoot strike where the heel comes down), in
-  // order; both feet touching down within 0.1 s (landing from a fall,
-  // replanting both feet) is one strike, not two steps.
+  // order; both feet touching down within 0.1 s (landing from a fall, replanting both feet) is
+  // one strike, not two steps.
   std::vector<double> strikes;
 
   bool sound() const { return failure.empty(); }

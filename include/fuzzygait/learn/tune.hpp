@@ -59,6 +59,12 @@ struct TuneOptions {
   double thigh_rmse_max = 5.7;
   double knee_rmse_max = 7.7;
   double ankle_rmse_max = 5.7;
+  // Likewise for every condition: foot slip (m a frame; bound 1 mm) and step error (%; bound
+  // 3 %) pay steeply above these. And the set's word penalty (word_penalty) above this one,
+  // a little under the 1 the shipped sets keep.
+  double slip_max = 0.0009;
+  double step_error_max = 2.5;
+  double word_penalty_max = 0.9;
   // RMS angular acceleration of the thigh's and knee's mean cycles, as a multiple of the
   // reference's at the same cadence, above which a condition with enforce_bounds pays: how much
   // snappier than people the joints may move (their ease in and out). No limit by default.
