@@ -81,6 +81,23 @@ double bisect(double good, double bad, Ok ok) {
   return good;
 }
 
+// The ground's height under a foot's heel, ball and toe tip.
+struct FootGround {
+  double heel;
+  double ball;
+  double tip;
+};
+FootGround ground_under(const terrain::Terrain& terrain, const LegPoints& p) {
+  return {terrain.height(p.heel.x), terrain.height(p.ball.x), terrain.height(p.tip.x)};
+}
+
+// How deep the heel, ball or (with_tip) toe tip is below the ground (negative when all are
+// above).
+double foot_depth(const LegPoints& p, const FootGround& ground, bool with_tip = true) {
+  const double sole = std::max(ground.heel - p.heel.y, ground.ball - p.ball.y);
+  return with_tip ? std::max(sole, ground.tip - p.tip.y) : sole;
+}
+
 Point contact_point(const LegPoints& p, Phase phase) {
   return phase == Phase::Ball ? p.ball : p.heel;
 }
@@ -501,15 +518,13 @@ double Walker::knee_gap(int leg, const LegPoints& p) const {
   return knee.y - terrain_->height(knee.x);
 }
 
-// A carrying leg folds no further once its knee reaches the ground (only after an awkward start):
+// A carrying leg whose knee is below the ground folds no further (only after an awkward start):
 // its knee flexion goes back towards `known_good` (or straight) just as far as needed, a flat foot
 // staying flat.
 // The other leg, if swinging, then steps ahead of the body to take the weight, even where its
-// target was behind it (the kneeling leg's foot far behind the hip). `at_origin`: the leg's
-// points with its hip at the origin; returns whether the angles changed.
-bool Walker::keep_knee_up(int leg, double known_good, const LegPoints& at_origin) {
+// target was behind it (the kneeling leg's foot far behind the hip).
+void Walker::keep_knee_up(int leg, double known_good) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-  if (knee_gap(leg, at_origin) >= 0.0) return false;
   const double slope = terrain_->slope(l.anchor.x);
   auto gap = [&](double knee) {
     l.angles.knee = knee;
@@ -527,15 +542,6 @@ bool Walker::keep_knee_up(int leg, double known_good, const LegPoints& at_origin
   if (other.phase == Phase::Swing) {
     other.target_x = std::max(other.target_x, state_.pelvis.x + 0.5 * step_length_);
   }
-  return true;
-}
-
-// How deep the heel, ball or (with_tip) toe tip is below the ground (negative when all are
-// above).
-double Walker::foot_depth(const LegPoints& p, bool with_tip) const {
-  const double sole =
-      std::max(terrain_->height(p.heel.x) - p.heel.y, terrain_->height(p.ball.x) - p.ball.y);
-  return with_tip ? std::max(sole, terrain_->height(p.tip.x) - p.tip.y) : sole;
 }
 
 void Walker::clear_ground(int leg, double max_change, double margin, bool with_tip) {
@@ -560,7 +566,8 @@ void Walker::clear_ground(int leg, double max_change, double margin, bool with_t
   auto depth = [&](double knee) {
     rig::LegAngles a = l.angles;
     a.knee = knee;
-    return foot_depth(leg_points(leg, state_.pelvis, a), with_tip) + margin;
+    const LegPoints p = leg_points(leg, state_.pelvis, a);
+    return foot_depth(p, ground_under(*terrain_, p), with_tip) + margin;
   };
   if (depth(high) > 0.0) {  // cannot clear in one step: fold as far as allowed
     l.angles.knee = high;
@@ -590,6 +597,22 @@ void Walker::update_metrics(int leg, const LegPoints& p, MetricValues& m) {
       rig::degrees(foot_of(tilt, l.angles) - terrain_->slope(p.ankle.x));
 }
 
+// All eight controllers before any joint moves: they read only the metrics, and evaluated side
+// by side (not between the legs' integrations) their chains of divisions overlap.
+void Walker::command(const std::array<MetricValues, 2>& metrics,
+                     std::array<std::array<double, 4>, 2>& commands) {
+  for (std::size_t leg = 0; leg < 2; ++leg) {
+    const LegPhase phase =
+        state_.legs[leg].phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
+    for (std::size_t joint = 0; joint < 4; ++joint) {
+      const auto s = static_cast<std::size_t>(slot(phase, static_cast<Joint>(joint)));
+      commands[leg][joint] =
+          controller_backend_ ? controller_backend_(static_cast<int>(s), metrics[leg])
+                              : controllers_->controllers[s].evaluate(metrics[leg], workspaces_[s]);
+    }
+  }
+}
+
 void Walker::advance(double dt) {
   if (!std::isfinite(dt) || dt < 0.0) throw std::invalid_argument("advance: dt must be >= 0");
   const double steps = std::ceil(dt / time_step_ - 1e-9);
@@ -607,7 +630,7 @@ void Walker::step(double h) {
           leg_points(leg, state_.pelvis, state_.legs[static_cast<std::size_t>(leg)].angles);
     }
   }
-  std::array<MetricValues, 2> metrics{};
+  std::array<MetricValues, 2> metrics;
   for (int leg = 0; leg < 2; ++leg) {
     update_metrics(leg, end_points_[static_cast<std::size_t>(leg)],
                    metrics[static_cast<std::size_t>(leg)]);
@@ -624,29 +647,22 @@ void Walker::step(double h) {
     follow_ = 1.0 - std::exp(-h / controllers_->inertia);
   }
   const double follow = follow_;
+  std::array<std::array<double, 4>, 2> commands;
+  command(metrics, commands);
   std::array<LegAngles, 2> previous;
   std::array<LegAngles, 2> commanded;
   for (int leg = 0; leg < 2; ++leg) {
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
     previous[static_cast<std::size_t>(leg)] = l.angles;
-    const LegPhase phase = l.phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
-    const MetricValues& m = metrics[static_cast<std::size_t>(leg)];
-    auto command = [&](Joint joint) {
-      const int s = slot(phase, joint);
-      if (controller_backend_) return controller_backend_(s, m);
-      return controllers_->controllers[static_cast<std::size_t>(s)].evaluate(
-          m, workspaces_[static_cast<std::size_t>(s)]);
-    };
-    const double hip_rate = command(Joint::Hip);
+    const std::array<double, 4>& c = commands[static_cast<std::size_t>(leg)];
     // A longer swing of the thigh swings the shank faster in proportion (see ControllerSet).
     const double reference = controllers_->swing_knee_reference_sweep;
-    const double knee_scale = phase == LegPhase::Swing && reference > 0.0
+    const double knee_scale = l.phase == Phase::Swing && reference > 0.0
                                   ? std::abs(l.sweep_end - l.sweep_start) / reference
                                   : 1.0;
-    const double target_velocity[4] = {hip_rate * sweep_scale(l.sweep_start, l.sweep_end),
-                                       knee_scale * rig::radians(command(Joint::Knee)),
-                                       rig::radians(command(Joint::Ankle)),
-                                       rig::radians(command(Joint::Toe))};
+    const double target_velocity[4] = {c[0] * sweep_scale(l.sweep_start, l.sweep_end),
+                                       knee_scale * rig::radians(c[1]), rig::radians(c[2]),
+                                       rig::radians(c[3])};
     double* velocity[4] = {&l.velocity.hip, &l.velocity.knee, &l.velocity.ankle, &l.velocity.toe};
     double* angle[4] = {&l.angles.hip, &l.angles.knee, &l.angles.ankle, &l.angles.toe};
     for (int j = 0; j < 4; ++j) {
@@ -668,13 +684,16 @@ void Walker::step(double h) {
     settle_foot(state_.lead, commanded[static_cast<std::size_t>(state_.lead)]);
     const int lead = state_.lead;
     LegPoints at_origin = hip_at_origin(lead);
-    if (keep_knee_up(lead, previous[static_cast<std::size_t>(lead)].knee, at_origin)) {
+    if (knee_gap(lead, at_origin) < 0.0) {
+      keep_knee_up(lead, previous[static_cast<std::size_t>(lead)].knee);
       at_origin = hip_at_origin(lead);
     }
     place_pelvis(lead, at_origin);
   }
-  // A swinging leg placed below with the pelvis carried by the other leg: its points stand.
+  // A swinging leg placed below with the pelvis carried by the other leg: its points stand, with
+  // its heel and ball above the ground, and the ground's height under its toe tip.
   std::array<bool, 2> placed{};
+  std::array<double, 2> placed_tip_ground{};
   for (int leg = 0; leg < 2; ++leg) {
     if (leg == state_.lead) continue;
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
@@ -692,23 +711,26 @@ void Walker::step(double h) {
       // the reflex never jerks the knee when the foot leaves or reaches the ground.
       const double margin = kSwingClearance * std::clamp((l.delta + 1.0) / 0.5, 0.0, 1.0) *
                             std::clamp((kLandingDelta - l.delta) / 0.3, 0.0, 1.0);
-      if ((!arriving && foot_depth(p) > -margin) || knee_gap < kSwingClearance) {
+      FootGround ground = ground_under(*terrain_, p);
+      if ((!arriving && foot_depth(p, ground) > -margin) || knee_gap < kSwingClearance) {
         clear_ground(leg, kReflexSpeed * h, margin);
         p = leg_points(leg, state_.pelvis, l.angles);
+        ground = ground_under(*terrain_, p);
       }
-      const double heel_depth = terrain_->height(p.heel.x) - p.heel.y;
-      const double ball_depth = terrain_->height(p.ball.x) - p.ball.y;
+      const double heel_depth = ground.heel - p.heel.y;
+      const double ball_depth = ground.ball - p.ball.y;
       if (heel_depth < 0.0 && ball_depth < 0.0) {
         if (state_.lead >= 0) {
           placed[static_cast<std::size_t>(leg)] = true;
+          placed_tip_ground[static_cast<std::size_t>(leg)] = ground.tip;
           end_points_[static_cast<std::size_t>(leg)] = p;
         }
         continue;
       }
       if (heel_depth >= ball_depth) {
-        strike(leg, Phase::Heel, {p.heel.x, terrain_->height(p.heel.x)});
+        strike(leg, Phase::Heel, {p.heel.x, ground.heel});
       } else {
-        strike(leg, Phase::Ball, {p.ball.x, terrain_->height(p.ball.x)});
+        strike(leg, Phase::Ball, {p.ball.x, ground.ball});
       }
       if (state_.lead == leg) {
         settle_foot(leg, l.angles);
@@ -738,16 +760,19 @@ void Walker::step(double h) {
   }
   for (int leg = 0; leg < 2; ++leg) {
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-    LegPoints p = placed[static_cast<std::size_t>(leg)] ? end_points_[static_cast<std::size_t>(leg)]
-                                                        : leg_points(leg, state_.pelvis, l.angles);
+    const bool stands = placed[static_cast<std::size_t>(leg)];
+    LegPoints p = stands ? end_points_[static_cast<std::size_t>(leg)]
+                         : leg_points(leg, state_.pelvis, l.angles);
     // A foot that has just lifted off can sit a hair below the ground once the other foot takes
     // the pelvis: lift it at once. (Its toe tip is left to the toes, which bend up below.)
-    if (l.phase == Phase::Swing && state_.lead >= 0 && foot_depth(p, false) > 0.0) {
+    if (!stands && l.phase == Phase::Swing && state_.lead >= 0 &&
+        foot_depth(p, ground_under(*terrain_, p), false) > 0.0) {
       clear_ground(leg, limits_.maximum.knee, 0.0, false);
       p = leg_points(leg, state_.pelvis, l.angles);
     }
     // Toes never dip below the ground: they bend up where the ground holds them.
-    const double ground = terrain_->height(p.tip.x);
+    const double ground =
+        stands ? placed_tip_ground[static_cast<std::size_t>(leg)] : terrain_->height(p.tip.x);
     if (p.tip.y < ground) {
       const double rise = std::clamp((ground - p.ball.y) / segments_.toe, -1.0, 1.0);
       l.angles.toe = std::max(l.angles.toe, arcsin(rise) - foot_of(tilt, l.angles));

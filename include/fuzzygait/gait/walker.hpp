@@ -149,11 +149,13 @@ class Walker {
   bool close_chain(int leg);
   void settle_foot(int leg, const rig::LegAngles& commanded);
   double stance_target() const;
-  double foot_depth(const rig::LegPoints& points, bool with_tip = true) const;
   double knee_gap(int leg, const rig::LegPoints& at_origin) const;
-  bool keep_knee_up(int leg, double known_good, const rig::LegPoints& at_origin);
+  void keep_knee_up(int leg, double known_good);
   void clear_ground(int leg, double max_change, double margin, bool with_tip = true);
   void update_metrics(int leg, const rig::LegPoints& points, MetricValues& metrics);
+  // Each leg's four controllers for its phase, [leg][joint]: hip, knee, ankle, toe.
+  void command(const std::array<MetricValues, 2>& metrics,
+               std::array<std::array<double, 4>, 2>& commands);
   rig::LegPoints leg_points(int leg, rig::Point hip, const rig::LegAngles& angles);
 
   const ControllerSet* controllers_;

@@ -138,12 +138,14 @@ struct JointLimits {
   }
 };
 
-// Inline: the walker converts its metrics every time step.
+// Inline: the walker converts its metrics every time step. One multiplication by the ratio (a
+// division per conversion was sixteen divisions a walker step); within an ulp of converting with
+// a multiply and a divide.
 inline double degrees(double radians) {
-  return radians * 180.0 / std::numbers::pi;
+  return radians * (180.0 / std::numbers::pi);
 }
 inline double radians(double degrees) {
-  return degrees * std::numbers::pi / 180.0;
+  return degrees * (std::numbers::pi / 180.0);
 }
 
 }  // namespace fuzzygait::rig
