@@ -55,9 +55,10 @@ RecoveryReport walk_from_random_start(const ControllerSet& set, WalkerOptions op
       if (e.event != Event::HeelStrike && e.event != Event::ForefootStrike) continue;
       // Where the walker counts the step from: the heel, or for a forefoot strike where the
       // heel will come down (steps are heel to heel).
-      if (last_strike_time < 0.0 || e.time - last_strike_time >= 0.1)
+      if (last_strike_time < 0.0 || e.time - last_strike_time >= 0.1) {
         r.strikes.push_back(
             walker.state().legs[static_cast<std::size_t>(rig::index(e.side))].strike_x);
+      }
       last_strike_time = e.time;
     }
     walker.clear_events();

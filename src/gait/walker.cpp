@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -690,10 +691,9 @@ void Walker::step(double h) {
     }
     place_pelvis(lead, at_origin);
   }
-  // A swinging leg placed below with the pelvis carried by the other leg: its points stand, with
-  // its heel and ball above the ground, and the ground's height under its toe tip.
-  std::array<bool, 2> placed{};
-  std::array<double, 2> placed_tip_ground{};
+  // A swinging leg placed below with the pelvis carried by the other leg: its points stand (its
+  // heel and ball above the ground), and this is the ground's height under its toe tip.
+  std::array<std::optional<double>, 2> placed_tip_ground;
   for (int leg = 0; leg < 2; ++leg) {
     if (leg == state_.lead) continue;
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
@@ -706,13 +706,13 @@ void Walker::step(double h) {
       // and puts the foot down where it is.
       const bool arriving = l.delta >= kLandingDelta || state_.lead < 0 ||
                             state_.time - l.swing_start > kLongestSwing;
-      const double knee_gap = p.knee.y - terrain_->height(p.knee.x);
+      const double knee_clearance = p.knee.y - terrain_->height(p.knee.x);
       // The clearance wanted grows from nothing at toe off and fades again before landing, so
       // the reflex never jerks the knee when the foot leaves or reaches the ground.
       const double margin = kSwingClearance * std::clamp((l.delta + 1.0) / 0.5, 0.0, 1.0) *
                             std::clamp((kLandingDelta - l.delta) / 0.3, 0.0, 1.0);
       FootGround ground = ground_under(*terrain_, p);
-      if ((!arriving && foot_depth(p, ground) > -margin) || knee_gap < kSwingClearance) {
+      if ((!arriving && foot_depth(p, ground) > -margin) || knee_clearance < kSwingClearance) {
         clear_ground(leg, kReflexSpeed * h, margin);
         p = leg_points(leg, state_.pelvis, l.angles);
         ground = ground_under(*terrain_, p);
@@ -721,7 +721,6 @@ void Walker::step(double h) {
       const double ball_depth = ground.ball - p.ball.y;
       if (heel_depth < 0.0 && ball_depth < 0.0) {
         if (state_.lead >= 0) {
-          placed[static_cast<std::size_t>(leg)] = true;
           placed_tip_ground[static_cast<std::size_t>(leg)] = ground.tip;
           end_points_[static_cast<std::size_t>(leg)] = p;
         }
@@ -760,7 +759,8 @@ void Walker::step(double h) {
   }
   for (int leg = 0; leg < 2; ++leg) {
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-    const bool stands = placed[static_cast<std::size_t>(leg)];
+    const std::optional<double> tip_ground = placed_tip_ground[static_cast<std::size_t>(leg)];
+    const bool stands = tip_ground.has_value();
     LegPoints p = stands ? end_points_[static_cast<std::size_t>(leg)]
                          : leg_points(leg, state_.pelvis, l.angles);
     // A foot that has just lifted off can sit a hair below the ground once the other foot takes
@@ -771,8 +771,7 @@ void Walker::step(double h) {
       p = leg_points(leg, state_.pelvis, l.angles);
     }
     // Toes never dip below the ground: they bend up where the ground holds them.
-    const double ground =
-        stands ? placed_tip_ground[static_cast<std::size_t>(leg)] : terrain_->height(p.tip.x);
+    const double ground = stands ? *tip_ground : terrain_->height(p.tip.x);
     if (p.tip.y < ground) {
       const double rise = std::clamp((ground - p.ball.y) / segments_.toe, -1.0, 1.0);
       l.angles.toe = std::max(l.angles.toe, arcsin(rise) - foot_of(tilt, l.angles));

@@ -134,6 +134,7 @@ TEST(CycleAcceleration, TheWalkReportsItBesidePeoples) {
     EXPECT_TRUE(std::isfinite(s.rms_jerk));
     EXPECT_GT(s.rms_acceleration, 0.0);
     EXPECT_GT(s.rms_jerk, 0.0);
+    EXPECT_GE(s.max_jerk, s.rms_jerk);
   }
   const std::string text = gait::to_text(r);
   EXPECT_NE(text.find("knee   acceleration RMS"), std::string::npos) << text;

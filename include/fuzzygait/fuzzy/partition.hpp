@@ -147,8 +147,8 @@ class PackedPartition {
   enum class Shape : std::uint8_t { OneInput, Product, Minimum };
 
   // One straight path per shape (evaluate_partition is inlined with the constants).
-  double evaluate_as(bool two_inputs, std::size_t row_stride,
-                                            Conjunction conjunction, double x0, double x1) const {
+  double evaluate_as(bool two_inputs, std::size_t row_stride, Conjunction conjunction, double x0,
+                     double x1) const {
     return evaluate_partition(two_inputs, knots_[0].data(), counts_[0], knots_[1].data(),
                               counts_[1], consequents_.data(), row_stride, conjunction,
                               default_value_, x0, x1);
