@@ -156,9 +156,13 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
     throw std::invalid_argument("time step must be between 0 and 0.05 s");
   }
   set_step_length(options.step_length);
-  for (int s = 0; s < kSlotCount; ++s) {
-    workspaces_[static_cast<std::size_t>(s)] =
-        controllers.controllers[static_cast<std::size_t>(s)].make_workspace();
+  for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
+    const Controller& c = controllers.controllers[s];
+    workspaces_[s] = c.make_workspace();
+    packed_[s] = c.packed();
+    for (std::size_t i = 0; i < 2; ++i) {
+      packed_inputs_[s][i] = static_cast<std::uint8_t>(c.input(std::min(i, c.input_count() - 1)));
+    }
   }
   events_.reserve(kEventCapacity);
   // Angle between the thigh and the hip-heel line of a straight leg with a neutral ankle.
@@ -602,14 +606,21 @@ void Walker::update_metrics(int leg, const LegPoints& p, MetricValues& m) {
 // (rather than between the two legs' integrations) they took 3 % less of a step.
 void Walker::command(const std::array<MetricValues, 2>& metrics,
                      std::array<std::array<double, 4>, 2>& commands) {
+  const bool backend = static_cast<bool>(controller_backend_);
   for (std::size_t leg = 0; leg < 2; ++leg) {
     const LegPhase phase =
         state_.legs[leg].phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
+    const MetricValues& m = metrics[leg];
     for (std::size_t joint = 0; joint < 4; ++joint) {
       const auto s = static_cast<std::size_t>(slot(phase, static_cast<Joint>(joint)));
-      commands[leg][joint] =
-          controller_backend_ ? controller_backend_(static_cast<int>(s), metrics[leg])
-                              : controllers_->controllers[s].evaluate(metrics[leg], workspaces_[s]);
+      const fuzzy::PackedPartition* packed = packed_[s];
+      if (backend) {
+        commands[leg][joint] = controller_backend_(static_cast<int>(s), m);
+      } else if (packed) {
+        commands[leg][joint] = packed->evaluate(m[packed_inputs_[s][0]], m[packed_inputs_[s][1]]);
+      } else {
+        commands[leg][joint] = controllers_->controllers[s].evaluate(m, workspaces_[s]);
+      }
     }
   }
 }

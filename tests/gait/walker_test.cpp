@@ -5,7 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <span>
+#include <string>
+#include <vector>
 
+#include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/gait/motion.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "support/allocation_counter.hpp"
@@ -165,8 +169,65 @@ TEST(Walker, AdvancingAllocatesNothing) {
 }
 
 TEST(Walker, ControllersRunOnTheFastPath) {
-  for (const gait::Controller& c : default_set().controllers) {
-    EXPECT_TRUE(c.fast_path()) << c.source();
+  for (const std::string& name : gait::ControllerSet::builtin_names()) {
+    for (const gait::Controller& c : gait::ControllerSet::builtin(name).controllers) {
+      EXPECT_TRUE(c.fast_path()) << c.source();
+      EXPECT_NE(c.packed(), nullptr) << c.source();
+    }
+  }
+}
+
+// The walker evaluates packed controllers itself, reading each one's metrics; the same set run
+// through the general fuzzy evaluator (as a controller back end) must give the same walk to the
+// bit, so the fast path reads the right metrics and keeps the engines' arithmetic.
+TEST(Walker, FastPathWalksAsTheGeneralEvaluator) {
+  const terrain::Terrain ground = terrain::Terrain::polyline(
+      {{-10.0, 0.0}, {2.0, 0.0}, {4.0, 0.2}, {6.0, 0.2}, {6.001, 0.1}, {20.0, 0.1}});
+  for (const std::string& name : gait::ControllerSet::builtin_names()) {
+    const gait::ControllerSet set = gait::ControllerSet::builtin(name);
+    std::vector<fuzzy::Evaluator> evaluators;
+    std::vector<fuzzy::Workspace> workspaces;
+    for (const gait::Controller& c : set.controllers) {
+      evaluators.emplace_back(c.engine());
+      workspaces.push_back(evaluators.back().make_workspace());
+    }
+    long calls = 0;
+    gait::WalkerOptions general;
+    general.controller_backend = [&](int slot, const gait::MetricValues& metrics) {
+      const auto s = static_cast<std::size_t>(slot);
+      const gait::Controller& c = set.controllers[s];
+      double in[2] = {};
+      for (std::size_t i = 0; i < c.input_count(); ++i)
+        in[i] = metrics[static_cast<std::size_t>(c.input(i))];
+      double out = 0.0;
+      evaluators[s].evaluate(std::span<const double>(in, c.input_count()),
+                             std::span<double>(&out, 1), workspaces[s]);
+      ++calls;
+      return out;
+    };
+    for (const gait::StartPose start : {gait::StartPose{}, gait::StartPose{true, 7, 0.0}}) {
+      gait::WalkerOptions own;
+      own.start = start;
+      general.start = start;
+      gait::Walker a(set, own, ground);
+      gait::Walker b(set, general, ground);
+      for (int frame = 0; frame < 600; ++frame) {
+        a.advance(1.0 / 60.0);
+        b.advance(1.0 / 60.0);
+        const rig::Pose p = a.pose();
+        const rig::Pose q = b.pose();
+        bool same = p.pelvis.x == q.pelvis.x && p.pelvis.y == q.pelvis.y;
+        for (std::size_t leg = 0; leg < 2; ++leg) {
+          const rig::LegAngles& x = p.legs[leg];
+          const rig::LegAngles& y = q.legs[leg];
+          same = same && x.hip == y.hip && x.knee == y.knee && x.ankle == y.ankle && x.toe == y.toe;
+        }
+        ASSERT_TRUE(same) << name << ", start " << (start.random ? "random" : "default")
+                          << ", frame " << frame;
+      }
+      EXPECT_GE(a.state().heel_strikes, 10u) << name;
+    }
+    EXPECT_GT(calls, 8 * 4 * 600) << name;
   }
 }
 

@@ -67,6 +67,9 @@ class Controller {
   const fuzzy::Engine& engine() const { return engine_; }
   const std::string& source() const { return source_; }
   bool fast_path() const { return partition_.has_value(); }
+  // The engine packed for the fast path (null when it is not a partition controller of at most
+  // PackedPartition::kMaxKnots knots per input), reading metrics input(0) and input(1).
+  const fuzzy::PackedPartition* packed() const { return packed_ ? &*packed_ : nullptr; }
   std::size_t input_count() const { return input_count_; }
   Metric input(std::size_t i) const { return inputs_[i]; }
 

@@ -170,6 +170,9 @@ class Walker {
   WalkerState state_;
   std::array<fuzzy::Workspace, kSlotCount> workspaces_;
   std::function<double(int, const MetricValues&)> controller_backend_;
+  // Each slot's packed controller (null: evaluate the Controller) and the metrics it reads.
+  std::array<const fuzzy::PackedPartition*, kSlotCount> packed_{};
+  std::array<std::array<std::uint8_t, 2>, kSlotCount> packed_inputs_{};
   // Each leg's segment orientations when their sines and cosines were last computed: a time
   // step places a leg several times, mostly with unchanged angles (see leg_points()).
   struct TrigCache {
