@@ -106,7 +106,8 @@ struct EventRecord {
 
 class Walker {
  public:
-  // The controller set and terrain must outlive the walker. Throws std::invalid_argument for a
+  // The controller set and terrain must outlive the walker and stay unchanged while it walks (it
+  // keeps pointers to the set's packed controllers). Throws std::invalid_argument for a
   // bad rig, or a step length the legs cannot reach (it names the limit).
   Walker(const ControllerSet& controllers, const WalkerOptions& options,
          const terrain::Terrain& terrain);
