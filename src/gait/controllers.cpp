@@ -93,8 +93,14 @@ fuzzy::Workspace Controller::make_workspace() const {
   return partition_ ? fuzzy::Workspace() : evaluator_->make_workspace();
 }
 
-double Controller::evaluate_general(const MetricValues& metrics,
-                                    fuzzy::Workspace& workspace) const {
+double Controller::evaluate_unpacked(const MetricValues& metrics,
+                                     fuzzy::Workspace& workspace) const {
+  if (partition_) {
+    const double a = metrics[static_cast<std::size_t>(inputs_[0])];
+    return input_count_ == 1
+               ? partition_->evaluate(a)
+               : partition_->evaluate(a, metrics[static_cast<std::size_t>(inputs_[1])]);
+  }
   std::array<double, 2> in{};
   for (std::size_t i = 0; i < input_count_; ++i) {
     in[i] = metrics[static_cast<std::size_t>(inputs_[i])];

@@ -157,12 +157,7 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
   }
   set_step_length(options.step_length);
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
-    const Controller& c = controllers.controllers[s];
-    workspaces_[s] = c.make_workspace();
-    packed_[s] = c.packed();
-    for (std::size_t i = 0; i < 2; ++i) {
-      packed_inputs_[s][i] = static_cast<std::uint8_t>(c.input(std::min(i, c.input_count() - 1)));
-    }
+    workspaces_[s] = controllers.controllers[s].make_workspace();
   }
   events_.reserve(kEventCapacity);
   // Angle between the thigh and the hip-heel line of a straight leg with a neutral ankle.
@@ -613,14 +608,8 @@ void Walker::command(const std::array<MetricValues, 2>& metrics,
     const MetricValues& m = metrics[leg];
     for (std::size_t joint = 0; joint < 4; ++joint) {
       const auto s = static_cast<std::size_t>(slot(phase, static_cast<Joint>(joint)));
-      const fuzzy::PackedPartition* packed = packed_[s];
-      if (backend) {
-        commands[leg][joint] = controller_backend_(static_cast<int>(s), m);
-      } else if (packed) {
-        commands[leg][joint] = packed->evaluate(m[packed_inputs_[s][0]], m[packed_inputs_[s][1]]);
-      } else {
-        commands[leg][joint] = controllers_->controllers[s].evaluate(m, workspaces_[s]);
-      }
+      commands[leg][joint] = backend ? controller_backend_(static_cast<int>(s), m)
+                                     : controllers_->controllers[s].evaluate(m, workspaces_[s]);
     }
   }
 }

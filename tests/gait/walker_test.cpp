@@ -177,9 +177,9 @@ TEST(Walker, ControllersRunOnTheFastPath) {
   }
 }
 
-// The walker evaluates packed controllers itself, reading each one's metrics; the same set run
-// through the general fuzzy evaluator (as a controller back end) must give the same walk to the
-// bit, so the fast path reads the right metrics and keeps the engines' arithmetic.
+// The walker's controllers run on the packed fast path; the same set run through the general
+// fuzzy evaluator (as a controller back end) must give the same walk to the bit, so the fast path
+// reads the right metrics and keeps the engines' arithmetic.
 TEST(Walker, FastPathWalksAsTheGeneralEvaluator) {
   const terrain::Terrain ground = terrain::Terrain::polyline(
       {{-10.0, 0.0}, {2.0, 0.0}, {4.0, 0.2}, {6.0, 0.2}, {6.001, 0.1}, {20.0, 0.1}});

@@ -107,8 +107,8 @@ struct EventRecord {
 class Walker {
  public:
   // The controller set and terrain must outlive the walker and stay unchanged while it walks (it
-  // keeps pointers to the set's packed controllers). Throws std::invalid_argument for a
-  // bad rig, or a step length the legs cannot reach (it names the limit).
+  // keeps a workspace made for each of the set's controllers). Throws std::invalid_argument for
+  // a bad rig, or a step length the legs cannot reach (it names the limit).
   Walker(const ControllerSet& controllers, const WalkerOptions& options,
          const terrain::Terrain& terrain);
 
@@ -171,9 +171,6 @@ class Walker {
   WalkerState state_;
   std::array<fuzzy::Workspace, kSlotCount> workspaces_;
   std::function<double(int, const MetricValues&)> controller_backend_;
-  // Each slot's packed controller (null: evaluate the Controller) and the metrics it reads.
-  std::array<const fuzzy::PackedPartition*, kSlotCount> packed_{};
-  std::array<std::array<std::uint8_t, 2>, kSlotCount> packed_inputs_{};
   // Each leg's segment orientations when their sines and cosines were last computed: a time
   // step places a leg several times, mostly with unchanged angles (see leg_points()).
   struct TrigCache {
