@@ -339,7 +339,11 @@ std::string to_text(const GaitReport& r) {
   row("stance", r.stance_percent, "% of cycle");
   row("step length", r.step_length, "m");
   row("step length sd", r.step_length_sd, "m");
-  row("step error", r.step_error_percent, "% of command");
+  if (r.step_error_percent) {
+    row("step error", *r.step_error_percent, "% of command");
+  } else {
+    out += "step error                   (no commanded step given)\n";
+  }
   row("peak swing knee flexion", r.knee_peak, "deg");
   row("  at", r.knee_peak_percent, "% of cycle");
   row("thigh range", r.thigh_range, "deg");
@@ -381,7 +385,8 @@ std::string to_json(const GaitReport& r) {
   j["stance_percent"] = r.stance_percent;
   j["step_length_m"] = r.step_length;
   j["step_length_sd_m"] = r.step_length_sd;
-  j["step_error_percent"] = r.step_error_percent;
+  j["step_error_percent"] = r.step_error_percent ? nlohmann::ordered_json(*r.step_error_percent)
+                                                 : nlohmann::ordered_json(nullptr);
   j["knee_peak_deg"] = r.knee_peak;
   j["knee_peak_percent"] = r.knee_peak_percent;
   j["thigh_range_deg"] = r.thigh_range;

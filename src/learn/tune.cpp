@@ -238,8 +238,8 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
       auto over = [](double value, double low, double high) {
         return std::max(0.0, low - value) + std::max(0.0, value - high);
       };
-      cost += 2.0 * r.step_error_percent +
-              20.0 * std::max(0.0, r.step_error_percent - options.step_error_max);
+      const double step_error = r.step_error_percent.value();  // the step is always given
+      cost += 2.0 * step_error + 20.0 * std::max(0.0, step_error - options.step_error_max);
       cost += 200.0 * std::max(0.0, 0.012 - r.min_toe_clearance) / 0.012;
       cost += 100.0 * r.cycle_time_sd + 100.0 * r.step_length_sd / c.step_length;
       cost += 2.0 * over(r.stance_percent, options.stance_min, options.stance_max);
@@ -282,7 +282,7 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
             line, sizeof line,
             "stature %.2f step %.2f: cost %.2f | step %.3f (%.1f%%) stance %.1f cycle %.3f "
             "clear %.1f mm knee %.0f@%.0f%%",
-            c.stature, c.step_length, cost, r.step_length, r.step_error_percent, r.stance_percent,
+            c.stature, c.step_length, cost, r.step_length, step_error, r.stance_percent,
             r.cycle_time, 1000.0 * r.min_toe_clearance, r.knee_peak, r.knee_peak_percent);
         *report += line;
         if (c.reference) {

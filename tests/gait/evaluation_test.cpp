@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
@@ -141,6 +142,26 @@ TEST(CycleAcceleration, TheWalkReportsItBesidePeoples) {
   const std::string json = gait::to_json(r);
   EXPECT_NE(json.find("\"rms_jerk_deg_per_s3\""), std::string::npos);
   EXPECT_NE(json.find("\"reference_acceleration_rms_deg_per_s2\""), std::string::npos);
+}
+
+// Without a commanded step there is no step error: the report says so rather than showing 0 %.
+TEST(StepError, OnlyAgainstACommandedStep) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::Walker walker = test::make_walker(ground);
+  const gait::Motion motion = gait::record(walker, 8.0, 60.0);
+  const gait::GaitReport without = gait::evaluate(motion, ground);
+  EXPECT_FALSE(without.step_error_percent.has_value());
+  EXPECT_NE(gait::to_text(without).find("step error                   (no commanded step given)"),
+            std::string::npos)
+      << gait::to_text(without);
+  EXPECT_NE(gait::to_json(without).find("\"step_error_percent\": null"), std::string::npos);
+
+  // A command 10 % longer than the walk's steps: an error of 1 - 1/1.1 of the command.
+  const double command = 1.1 * without.step_length;
+  const gait::GaitReport with = gait::evaluate(motion, ground, nullptr, command);
+  ASSERT_TRUE(with.step_error_percent.has_value());
+  EXPECT_NEAR(*with.step_error_percent, 100.0 * (1.0 - 1.0 / 1.1), 1e-9);
+  EXPECT_NE(gait::to_text(with).find("step error"), std::string::npos);
 }
 
 }  // namespace

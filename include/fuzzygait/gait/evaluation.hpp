@@ -74,14 +74,14 @@ struct GaitReport {
   double stance_percent = 0.0;  // left foot in contact, share of the cycle
   double step_length = 0.0;     // m, heel to heel at successive heel strikes
   double step_length_sd = 0.0;
-  double step_error_percent = 0.0;     // against the command, when given
-  double knee_peak = 0.0;              // degrees, swing
-  double knee_peak_percent = 0.0;      // where in the cycle
-  double thigh_range = 0.0;            // degrees, max - min of the mean curve
-  double pelvis_vertical_range = 0.0;  // m, mean cycle
-  double max_slip = 0.0;               // m per frame, foot points in contact
-  double max_penetration = 0.0;        // m below the ground, any foot point
-  double min_toe_clearance = 0.0;      // m, mid-swing (middle 60 % of swing)
+  std::optional<double> step_error_percent;  // against the command; none without one
+  double knee_peak = 0.0;                    // degrees, swing
+  double knee_peak_percent = 0.0;            // where in the cycle
+  double thigh_range = 0.0;                  // degrees, max - min of the mean curve
+  double pelvis_vertical_range = 0.0;        // m, mean cycle
+  double max_slip = 0.0;                     // m per frame, foot points in contact
+  double max_penetration = 0.0;              // m below the ground, any foot point
+  double min_toe_clearance = 0.0;            // m, mid-swing (middle 60 % of swing)
   double max_velocity_jump = 0.0;  // deg/s, largest change of a joint's velocity at a phase switch
   double typical_velocity_change = 0.0;  // deg/s, 99th percentile of frame-to-frame changes
   // Angular acceleration and jerk of hip, knee, ankle and toe from the first measured cycle on.
