@@ -15,7 +15,7 @@ endif()
 # (-march=native and the like).
 # No code here reads errno or the floating-point exception flags, so the compiler may drop the
 # errno path of sqrt and speculate divisions into selects: the same values, and a walker step about
-# 1 % faster (interleaved A/B of 2.4 M steps, medians 246.4 -> 243.7 ns; walks bit-identical).
+# 1 % faster (interleaved A/B of 2.4 M steps, medians 246.2 -> 244.3 ns; walks bit-identical).
 set(FUZZYGAIT_FLOATING_POINT
   "$<$<CXX_COMPILER_ID:GNU,Clang,AppleClang>:-ffp-contract=off;-fno-math-errno;-fno-trapping-math>")
 

@@ -7,6 +7,7 @@ packages=(
   # toolchain
   build-essential cmake ninja-build ccache pkg-config git
   clang libclang-rt-14-dev         # libFuzzer target for the FLL reader
+  clang-format                     # the sources' format check (version 14 on Debian 12)
   # libraries (MIT/BSD/Apache: may be linked into the library and the program)
   libeigen3-dev nlohmann-json3-dev libcli11-dev libceres-dev
   # tests and benchmarks

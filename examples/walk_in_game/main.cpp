@@ -19,15 +19,16 @@ int main() {
   const double dt = 1.0 / 60.0;  // the game's frame time
   for (int frame = 0; frame < 600; ++frame) {
     if (frame == 300) walker.set_step_length(0.80);  // the player speeds up
-    walker.advance(dt);                             // no allocation, no file access
+    walker.advance(dt);                              // no allocation, no file access
 
     const rig::Pose pose = walker.pose();  // pelvis position and tilt, joint angles (radians)
     const rig::LegPoints left = walker.points(rig::Side::Left);
     if (frame % 60 == 0) {
-      std::printf("t=%5.2f s pelvis x=%6.3f y=%5.3f  left hip %6.1f knee %5.1f deg  heel y=%6.3f  %s\n",
-                  walker.time(), pose.pelvis.x, pose.pelvis.y, rig::degrees(pose.legs[0].hip),
-                  rig::degrees(pose.legs[0].knee), left.heel.y,
-                  walker.in_contact(rig::Side::Left) ? "left foot planted" : "left foot swinging");
+      std::printf(
+          "t=%5.2f s pelvis x=%6.3f y=%5.3f  left hip %6.1f knee %5.1f deg  heel y=%6.3f  %s\n",
+          walker.time(), pose.pelvis.x, pose.pelvis.y, rig::degrees(pose.legs[0].hip),
+          rig::degrees(pose.legs[0].knee), left.heel.y,
+          walker.in_contact(rig::Side::Left) ? "left foot planted" : "left foot swinging");
     }
   }
   return 0;

@@ -68,7 +68,9 @@ struct Element {
   int associativity;  // -1 left, 1 right
 };
 
-// fuzzylite's FunctionFactory, with its precedences and associativities.
+// fuzzylite's FunctionFactory, with its precedences and associativities. One element a line
+// (clang-format would pack two), so the table reads as a table.
+// clang-format off
 constexpr std::array<Element, 43> kElements = {{
     {"!", Fn::LogicalNot, true, 1, 100, 1},
     {"~", Fn::Negate, true, 1, 100, 1},
@@ -114,6 +116,7 @@ constexpr std::array<Element, 43> kElements = {{
     {"atan2", Fn::Atan2, false, 2, 0, -1},
     {"fmod", Fn::Fmod, false, 2, 0, -1},
 }};
+// clang-format on
 
 const Element* find_element(std::string_view token) {
   for (const Element& e : kElements) {
@@ -167,7 +170,9 @@ std::invalid_argument parentheses_error(std::string_view formula) {
   return std::invalid_argument("mismatching parentheses in '" + std::string(formula) + "'");
 }
 
-double round_half_away(double x) { return x > 0.0 ? std::floor(x + 0.5) : std::ceil(x - 0.5); }
+double round_half_away(double x) {
+  return x > 0.0 ? std::floor(x + 0.5) : std::ceil(x - 0.5);
+}
 
 double call(Fn fn, double a, double b) {
   switch (fn) {
@@ -260,7 +265,9 @@ double call(Fn fn, double a, double b) {
 
 }  // namespace
 
-bool is_formula_function(std::string_view name) { return find_element(name) != nullptr; }
+bool is_formula_function(std::string_view name) {
+  return find_element(name) != nullptr;
+}
 
 std::vector<std::string> to_postfix(std::string_view infix) {
   std::vector<std::string> queue;
@@ -330,12 +337,11 @@ FormulaProgram compile_formula(std::string_view infix) {
       if (static_cast<std::size_t>(element->arity) > depth) {
         throw std::invalid_argument(std::string(element->is_operator ? "operator" : "function") +
                                     " '" + token + "' needs " + std::to_string(element->arity) +
-                                    " operand" + (element->arity == 1 ? "" : "s") +
-                                    " but has " + std::to_string(depth) + " in '" +
-                                    program.text + "'");
+                                    " operand" + (element->arity == 1 ? "" : "s") + " but has " +
+                                    std::to_string(depth) + " in '" + program.text + "'");
       }
-      instruction.kind = element->arity == 1 ? FormulaInstruction::Kind::Unary
-                                             : FormulaInstruction::Kind::Binary;
+      instruction.kind =
+          element->arity == 1 ? FormulaInstruction::Kind::Unary : FormulaInstruction::Kind::Binary;
       instruction.function = static_cast<std::uint8_t>(element->fn);
       depth -= static_cast<std::size_t>(element->arity - 1);
     } else if (const std::optional<double> value = parse_scalar(token)) {

@@ -32,7 +32,8 @@ OutputVariable: out
   term: small Constant 1
   term: medium Constant 5
   term: large Constant 9
-)" + output_extra + "RuleBlock: b\n" + block);
+)" + output_extra +
+                  "RuleBlock: b\n" + block);
 }
 
 double run(const Evaluator& e, Workspace& w, double x) {
@@ -42,14 +43,15 @@ double run(const Evaluator& e, Workspace& w, double x) {
 }
 
 TEST(Evaluator, TakagiSugenoWeightedAverage) {
-  const Evaluator e(engine_with("", "  rule: if in is low then out is small\n"
-                                    "  rule: if in is mid then out is medium\n"
-                                    "  rule: if in is high then out is large\n"));
+  const Evaluator e(engine_with("",
+                                "  rule: if in is low then out is small\n"
+                                "  rule: if in is mid then out is medium\n"
+                                "  rule: if in is high then out is large\n"));
   Workspace w = e.make_workspace();
   EXPECT_DOUBLE_EQ(run(e, w, 0.0), 1.0);
   EXPECT_DOUBLE_EQ(run(e, w, 0.25), 3.0);  // 0.5*1 + 0.5*5
   EXPECT_DOUBLE_EQ(run(e, w, 0.75), 7.0);
-  EXPECT_DOUBLE_EQ(run(e, w, 7.0), 9.0);   // lock-range clamps the input to 1
+  EXPECT_DOUBLE_EQ(run(e, w, 7.0), 9.0);  // lock-range clamps the input to 1
 }
 
 TEST(Evaluator, DefaultAndLockPrevious) {
@@ -63,15 +65,16 @@ TEST(Evaluator, DefaultAndLockPrevious) {
   Workspace lw = locked.make_workspace();
   EXPECT_DOUBLE_EQ(run(locked, lw, 0.9), -1.0);  // no previous value yet
   EXPECT_DOUBLE_EQ(run(locked, lw, 0.25), 1.0);
-  EXPECT_DOUBLE_EQ(run(locked, lw, 0.9), 1.0);   // keeps the last valid value
+  EXPECT_DOUBLE_EQ(run(locked, lw, 0.9), 1.0);  // keeps the last valid value
   lw.reset();
   EXPECT_DOUBLE_EQ(run(locked, lw, 0.9), -1.0);
 }
 
 TEST(Evaluator, ActivationMethods) {
-  const std::string rules = "  rule: if in is low then out is small\n"
-                            "  rule: if in is mid then out is medium\n"
-                            "  rule: if in is high then out is large\n";
+  const std::string rules =
+      "  rule: if in is low then out is small\n"
+      "  rule: if in is mid then out is medium\n"
+      "  rule: if in is high then out is large\n";
   auto with = [&](const std::string& activation) {
     return Evaluator(engine_with("", "  activation: " + activation + "\n" + rules));
   };
@@ -96,8 +99,9 @@ TEST(Evaluator, ActivationMethods) {
 }
 
 TEST(Evaluator, HedgesAndWeights) {
-  const Evaluator e(engine_with("", "  rule: if in is very low then out is small with 0.5\n"
-                                    "  rule: if in is not low then out is large\n"));
+  const Evaluator e(engine_with("",
+                                "  rule: if in is very low then out is small with 0.5\n"
+                                "  rule: if in is not low then out is large\n"));
   Workspace w = e.make_workspace();
   // low(0.25) = 0.5: very -> 0.25, weight -> 0.125; not low -> 0.5.
   EXPECT_DOUBLE_EQ(run(e, w, 0.25), (0.125 * 1 + 0.5 * 9) / (0.125 + 0.5));
@@ -150,12 +154,15 @@ RuleBlock: r
   for (auto& r : results) {
     threads.emplace_back([&evaluator, &inputs, &r]() {
       Workspace own = evaluator.make_workspace();
-      for (int k = 0; k < 20; ++k) evaluator.evaluate_batch(inputs, r, own);
+      for (int k = 0; k < 20; ++k)
+        evaluator.evaluate_batch(inputs, r, own);
     });
   }
-  for (auto& t : threads) t.join();
+  for (auto& t : threads)
+    t.join();
   for (const auto& r : results) {
-    for (std::size_t i = 0; i < r.size(); ++i) EXPECT_EQ(r[i], expected[i]);  // bit-identical
+    for (std::size_t i = 0; i < r.size(); ++i)
+      EXPECT_EQ(r[i], expected[i]);  // bit-identical
   }
 }
 

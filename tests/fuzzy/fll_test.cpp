@@ -95,8 +95,8 @@ TEST(Fll, RuleTextKeepsParenthesesThatMatter) {
 }
 
 TEST(Fll, AnyHedgeAndChainedOutputs) {
-  const std::string text = std::string(kSmall) +
-                           "  rule: if in is any and out is pos then out is somewhat neg\n";
+  const std::string text =
+      std::string(kSmall) + "  rule: if in is any and out is pos then out is somewhat neg\n";
   const Engine e = read_fll(text);
   const Rule& r = e.rule_blocks[0].rules.at(2);
   ASSERT_EQ(r.propositions.size(), 2u);
@@ -143,12 +143,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"lock-range: true", "lock-range: yes", "bad.fll:6: 'lock-range' must be true"},
         BadCase{"low Triangle 0 0 0.5", "low Triangle 0 0",
                 "bad.fll:7: term 'low' (Triangle): needs 3 parameters"},
-        BadCase{"low Triangle 0 0 0.5", "low Triangle 0 0 0.5 1 2",
-                "found 5"},
+        BadCase{"low Triangle 0 0 0.5", "low Triangle 0 0 0.5 1 2", "found 5"},
         BadCase{"low Triangle 0 0 0.5", "low Triangel 0 0 0.5",
                 "bad.fll:7: unknown term shape 'Triangel'"},
-        BadCase{"low Triangle 0 0 0.5", "low Triangle 0 x 0.5",
-                "parameter 2 'x' is not a number"},
+        BadCase{"low Triangle 0 0 0.5", "low Triangle 0 x 0.5", "parameter 2 'x' is not a number"},
         BadCase{"term: high", "term: low", "bad.fll:8: term 'low' is defined twice in 'in'"},
         BadCase{"Centroid 200", "Centroid 0", "bad.fll:14: defuzzifier resolution must be"},
         BadCase{"Centroid 200", "Centroid 2.5", "resolution must be a whole number"},

@@ -54,9 +54,9 @@ TEST(Formula, Errors) {
 }
 
 TEST(Formula, PostfixOfRuleAntecedents) {
-  EXPECT_EQ(to_postfix("a is x or b is y and c is z"),
-            (std::vector<std::string>{"a", "is", "x", "b", "is", "y", "c", "is", "z", "and",
-                                      "or"}));
+  EXPECT_EQ(
+      to_postfix("a is x or b is y and c is z"),
+      (std::vector<std::string>{"a", "is", "x", "b", "is", "y", "c", "is", "z", "and", "or"}));
 }
 
 }  // namespace

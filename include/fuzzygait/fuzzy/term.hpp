@@ -39,10 +39,10 @@ inline constexpr int kTermKindCount = 21;
 
 struct TermShapeInfo {
   TermKind kind;
-  std::string_view name;                       // FLL class name
-  int parameter_count;                         // fixed count, or -1 (Discrete, Linear, Function)
-  bool has_height;                             // accepts a trailing height parameter
-  bool monotonic;                              // usable by Tsukamoto inference
+  std::string_view name;  // FLL class name
+  int parameter_count;    // fixed count, or -1 (Discrete, Linear, Function)
+  bool has_height;        // accepts a trailing height parameter
+  bool monotonic;         // usable by Tsukamoto inference
   std::span<const std::string_view> parameter_names;
 };
 
