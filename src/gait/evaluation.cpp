@@ -331,6 +331,10 @@ std::string to_text(const GaitReport& r) {
     std::snprintf(line, sizeof line, "%-28s %10.3f %s\n", name, value, unit);
     out += line;
   };
+  auto note = [&](const char* name, const char* text) {
+    std::snprintf(line, sizeof line, "%-28s %s\n", name, text);
+    out += line;
+  };
   row("cycles measured", r.cycles, "");
   row("cycle time", r.cycle_time, "s");
   row("cycle time sd", r.cycle_time_sd, "s");
@@ -342,7 +346,7 @@ std::string to_text(const GaitReport& r) {
   if (r.step_error_percent) {
     row("step error", *r.step_error_percent, "% of command");
   } else {
-    out += "step error                   (no commanded step given)\n";
+    note("step error", "(no commanded step given)");
   }
   row("peak swing knee flexion", r.knee_peak, "deg");
   row("  at", r.knee_peak_percent, "% of cycle");

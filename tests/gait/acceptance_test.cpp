@@ -203,8 +203,8 @@ StyleFigures style(const std::string& name) {
   EXPECT_LT(r.max_slip, 0.001) << name;
   EXPECT_LT(r.max_penetration, 0.001) << name;
   EXPECT_GE(r.min_toe_clearance, 0.005) << name;
-  EXPECT_LE(r.step_error_percent.value(), 4.0)
-      << name;  // cautious: 3.6 %, short of its 0.70 m steps
+  // Cautious: 3.6 %, short of its 0.70 m steps.
+  EXPECT_LE(r.step_error_percent.value(), 4.0) << name;
   EXPECT_LT(r.cycle_time_sd, 0.02) << name;
   return {r.cadence, r.cycle_time * (1.0 - r.stance_percent / 100.0), r.stance_percent, r.knee_peak,
           r.pelvis_vertical_range};

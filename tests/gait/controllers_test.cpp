@@ -4,19 +4,27 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
+#include "fuzzygait/fuzzy/partition.hpp"
 #include "fuzzygait/gait/controllers.hpp"
 #include "support/controller_sets.hpp"
 #include "support/text.hpp"
 
 using namespace fuzzygait;
 using ::testing::HasSubstr;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 namespace {
 
@@ -137,6 +145,92 @@ TEST(ControllerSet, FastPathAgreesWithTheFuzzyEvaluator) {
       general.evaluate(std::span<const double>(in.data(), c.input_count()),
                        std::span<double>(&expected, 1), w);
       EXPECT_NEAR(c.evaluate(m, unused), expected, 1e-9 * (1.0 + std::abs(expected))) << c.source();
+    }
+  }
+}
+
+// A controller in FLL over delta (`delta_terms` terms) and, when knee_terms > 0, the knee: strong
+// triangular partitions with one rule per combination, or (`gaussian`) Gaussian terms, which no
+// partition form takes.
+std::string controller_fll(int delta_terms, int knee_terms, bool gaussian) {
+  std::string text = "Engine: wide\nInputVariable: delta\n  range: -1 1\n  lock-range: true\n";
+  auto terms = [&](const std::string& prefix, int count, double lo, double hi) {
+    const double step = (hi - lo) / (count - 1);
+    for (int i = 0; i < count; ++i) {
+      const double peak = lo + i * step;
+      text += "  term: " + prefix + std::to_string(i) +
+              (gaussian ? " Gaussian " + std::to_string(peak) + " " + std::to_string(0.6 * step)
+                        : " Triangle " + std::to_string(peak - step) + " " + std::to_string(peak) +
+                              " " + std::to_string(peak + step)) +
+              "\n";
+    }
+  };
+  terms("d", delta_terms, -1.0, 1.0);
+  if (knee_terms > 0) {
+    text += "InputVariable: knee\n  range: 0 60\n  lock-range: true\n";
+    terms("k", knee_terms, 0.0, 60.0);
+  }
+  text +=
+      "OutputVariable: velocity\n  range: -500 500\n  lock-range: false\n"
+      "  aggregation: none\n  defuzzifier: WeightedAverage TakagiSugeno\n  default: nan\n";
+  const int rules = delta_terms * std::max(knee_terms, 1);
+  for (int r = 0; r < rules; ++r) {
+    text +=
+        "  term: c" + std::to_string(r) + " Constant " + std::to_string(37.0 * r - 211.0) + "\n";
+  }
+  text +=
+      "RuleBlock: rules\n  conjunction: AlgebraicProduct\n  disjunction: none\n"
+      "  implication: none\n  activation: General\n";
+  for (int i = 0; i < delta_terms; ++i) {
+    for (int j = 0; j < std::max(knee_terms, 1); ++j) {
+      text += "  rule: if delta is d" + std::to_string(i) +
+              (knee_terms > 0 ? " and knee is k" + std::to_string(j) : std::string()) +
+              " then velocity is c" + std::to_string(i * std::max(knee_terms, 1) + j) + "\n";
+    }
+  }
+  return text;
+}
+
+// The forms the walker's packed path does not take (a partition wider than PackedPartition packs,
+// a general engine) give the fuzzy evaluator's result too, a NaN input its default.
+TEST(Controller, UnpackedFormsAgreeWithTheFuzzyEvaluator) {
+  const int wide = static_cast<int>(fuzzy::PackedPartition::kMaxKnots) + 1;
+  struct Form {
+    int delta_terms;
+    int knee_terms;
+    bool gaussian;
+  };
+  for (const Form form : {Form{wide, 0, false}, Form{wide, 3, false}, Form{3, wide, false},
+                          Form{5, 0, true}, Form{4, 3, true}}) {
+    const std::string label = std::to_string(form.delta_terms) + " x " +
+                              std::to_string(form.knee_terms) +
+                              (form.gaussian ? " Gaussian" : " Triangle");
+    const gait::Controller c(
+        fuzzy::read_fll(controller_fll(form.delta_terms, form.knee_terms, form.gaussian)), label);
+    EXPECT_EQ(c.packed(), nullptr) << label;
+    EXPECT_EQ(c.fast_path(), !form.gaussian) << label;
+    ASSERT_EQ(c.input_count(), form.knee_terms > 0 ? 2u : 1u) << label;
+    const fuzzy::Evaluator general(c.engine());
+    fuzzy::Workspace general_workspace = general.make_workspace();
+    fuzzy::Workspace workspace = c.make_workspace();
+    for (int i = 0; i <= 400; ++i) {
+      gait::MetricValues m{};
+      std::array<double, 2> in{};
+      for (std::size_t k = 0; k < c.input_count(); ++k) {
+        const double t = std::fmod(i * (k == 0 ? 0.6180339887 : 0.4142135623), 1.0);
+        in[k] = i == 400 && k == 0 ? kNaN : (k == 0 ? -1.3 + 2.6 * t : -10.0 + 80.0 * t);
+        m[static_cast<std::size_t>(c.input(k))] = in[k];
+      }
+      double expected = 0.0;
+      general.evaluate(std::span<const double>(in.data(), c.input_count()),
+                       std::span<double>(&expected, 1), general_workspace);
+      const double got = c.evaluate(m, workspace);
+      if (std::isnan(expected)) {
+        EXPECT_TRUE(std::isnan(got)) << label << " at " << in[0] << ", " << in[1];
+      } else {
+        EXPECT_NEAR(got, expected, 1e-9 * (1.0 + std::abs(expected)))
+            << label << " at " << in[0] << ", " << in[1];
+      }
     }
   }
 }
