@@ -602,10 +602,12 @@ void Walker::update_metrics(int leg, const LegPoints& p, MetricValues& m) {
 void Walker::command(const std::array<MetricValues, 2>& metrics,
                      std::array<std::array<double, 4>, 2>& commands) {
   const bool backend = static_cast<bool>(controller_backend_);
+#pragma GCC unroll 2
   for (std::size_t leg = 0; leg < 2; ++leg) {
     const LegPhase phase =
         state_.legs[leg].phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
     const MetricValues& m = metrics[leg];
+#pragma GCC unroll 4
     for (std::size_t joint = 0; joint < 4; ++joint) {
       const auto s = static_cast<std::size_t>(slot(phase, static_cast<Joint>(joint)));
       commands[leg][joint] = backend ? controller_backend_(static_cast<int>(s), m)
