@@ -37,6 +37,12 @@ constexpr rig::LegAngles kMaxJointSpeed{20.0, 20.0, 20.0, 40.0};
 constexpr double kLongestSwing = 1.0;
 // Fastest the clearance reflex folds the knee, rad/s.
 constexpr double kReflexSpeed = 10.0;
+// Longest dt one advance() takes, s: an hour of walking, longer than any frame, so that a
+// nonsense dt (a timer gone wrong) is an error rather than a program frozen for days or a count
+// of sub-steps overflowing. With the shortest time step it is 3.6e8 sub-steps, within an int.
+constexpr double kLongestAdvance = 3600.0;
+constexpr double kShortestTimeStep = 1e-5;
+constexpr double kLongestTimeStep = 0.05;
 
 double thigh_of(double tilt, const LegAngles& a) {
   return a.hip - tilt;
@@ -152,8 +158,9 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
   if (controllers.controllers.size() != static_cast<std::size_t>(kSlotCount)) {
     throw std::invalid_argument("the controller set is incomplete");
   }
-  if (!std::isfinite(time_step_) || time_step_ <= 0.0 || time_step_ > 0.05) {
-    throw std::invalid_argument("time step must be between 0 and 0.05 s");
+  if (!(time_step_ >= kShortestTimeStep && time_step_ <= kLongestTimeStep)) {
+    throw std::invalid_argument("time step must be between 0.00001 and 0.05 s, got " +
+                                std::to_string(time_step_));
   }
   set_step_length(options.step_length);
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
@@ -617,7 +624,10 @@ void Walker::command(const std::array<MetricValues, 2>& metrics,
 }
 
 void Walker::advance(double dt) {
-  if (!std::isfinite(dt) || dt < 0.0) throw std::invalid_argument("advance: dt must be >= 0");
+  if (!(dt >= 0.0 && dt <= kLongestAdvance)) {
+    throw std::invalid_argument("advance: dt must be between 0 and 3600 s, got " +
+                                std::to_string(dt));
+  }
   const double steps = std::ceil(dt / time_step_ - 1e-9);
   const int n = std::max(1, static_cast<int>(steps));
   const double h = dt / n;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -151,6 +152,23 @@ TEST(Walker, BadInputGetsClearErrors) {
   gait::Walker w = make_walker(ground);
   EXPECT_THROW(w.advance(std::nan("")), std::invalid_argument);
   EXPECT_THROW(w.advance(-1.0), std::invalid_argument);
+  // A dt no frame has (a broken timer) is an error, not days of sub-steps or an overflowing count
+  // of them; the walker is left as it was.
+  const double before = w.time();
+  for (double dt : {3600.5, 1e12, 1e300, std::numeric_limits<double>::infinity()}) {
+    try {
+      w.advance(dt);
+      ADD_FAILURE() << dt;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("between 0 and 3600 s"), std::string::npos) << dt;
+    }
+  }
+  EXPECT_EQ(w.time(), before);
+  o.segments = rig::segments_from_stature(1.75);
+  for (double h : {0.0, 1e-12, 0.06, std::nan("")}) {
+    o.time_step = h;
+    EXPECT_THROW(gait::Walker(default_set(), o, ground), std::invalid_argument) << h;
+  }
   EXPECT_THROW(w.set_step_length(-0.1), std::invalid_argument);
 }
 

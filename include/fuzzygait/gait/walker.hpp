@@ -87,7 +87,7 @@ struct StartPose {
 struct WalkerOptions {
   rig::Segments segments = rig::segments_from_stature(1.75);
   double step_length = 0.70;       // metres, heel to heel
-  double time_step = 1.0 / 240.0;  // seconds; advance() subdivides longer frames
+  double time_step = 1.0 / 240.0;  // seconds (0.00001 to 0.05); advance() subdivides longer frames
   rig::JointLimits limits;
   StartPose start;
   // Another fuzzy back end for the controllers, e.g. a reference implementation to compare
@@ -117,7 +117,7 @@ class Walker {
   double step_length() const { return step_length_; }
 
   // Advances by dt seconds in equal sub-steps no longer than the time step. No allocation, no
-  // file access.
+  // file access. Throws std::invalid_argument for a dt that is NaN, negative or over an hour.
   void advance(double dt);
 
   const WalkerState& state() const { return state_; }
