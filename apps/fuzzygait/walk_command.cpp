@@ -1,5 +1,6 @@
 // `fuzzygait walk`: walks a character with a controller set and writes its files: the walk CSV,
 // the terrain, a BVH, the joint-angle curves against the normative band, and the poses.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -41,14 +42,17 @@ gait::StartPose parse_start(const std::string& text) {
   const std::string prefix = "random:";
   if (text.rfind(prefix, 0) == 0) {
     const std::string seed = text.substr(prefix.size());
+    // Digits only: stoull alone takes "-5" (as 2^64 - 5), "+5" and leading blanks.
+    const bool digits = !seed.empty() && std::all_of(seed.begin(), seed.end(),
+                                                     [](char c) { return c >= '0' && c <= '9'; });
     std::size_t used = 0;
     unsigned long long value = 0;
     try {
-      value = std::stoull(seed, &used);
-    } catch (const std::exception&) {
+      if (digits) value = std::stoull(seed, &used);
+    } catch (const std::exception&) {  // out of range
       used = 0;
     }
-    if (used == seed.size() && !seed.empty()) {
+    if (digits && used == seed.size()) {
       start.random = true;
       start.seed = value;
       return start;

@@ -79,6 +79,8 @@ TEST(WalkCommand, BadOptionsAreRefusedWithTheReason) {
   refused("--duration -2", "duration");
   refused("--style sprightly", "sprightly");
   refused("--start-pose random:x", "random:");
+  refused("--start-pose random:-5", "random:");
+  refused("--start-pose random:99999999999999999999999", "random:");
   refused("--cycles 1", "cycles");
 }
 
