@@ -2,6 +2,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -10,6 +11,10 @@ namespace fuzzygait::cli {
 
 // The file at `path` for reading; throws std::runtime_error naming it when it cannot be opened.
 inline std::ifstream open_or_throw(const std::string& path) {
+  // A directory opens as a stream that reads nothing.
+  if (std::filesystem::is_directory(path)) {
+    throw std::runtime_error(path + ": is a directory, not a file");
+  }
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open the file");
   return in;

@@ -3,6 +3,8 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "commands.hpp"
 #include "fuzzygait/io/controller_files.hpp"
@@ -50,7 +52,8 @@ void add_tune_command(CLI::App& app) {
   tune->add_option("--sigma", t.sigma, "Initial CMA-ES step (scaled units)");
   tune->add_option("--duration", t.duration, "Seconds walked per evaluation");
   tune->add_option("--recovery", o->recovery,
-                   "Also start from this many random poses that must settle into the gait");
+                   "Also start from this many random poses that must settle into the gait")
+      ->check(CLI::Range(0, 10000));
   tune->add_option("--cycle", o->cycle, "Wanted gait cycle time range, s (default 1.0 1.2)")
       ->expected(2);
   tune->add_option("--stance", o->stance, "Wanted stance share range, % (default 58 64)")
@@ -105,6 +108,7 @@ void add_tune_command(CLI::App& app) {
       if (generation % 10 == 0)
         std::cerr << "generation " << generation << ": cost " << cost << "\n";
     };
+    learn::validate(options);  // before any walk
     std::string report;
     std::cout << "start: cost " << learn::walk_cost(start, options, &report) << "\n" << report;
     const learn::TuneResult result = learn::tune(start, options);
@@ -112,10 +116,17 @@ void add_tune_command(CLI::App& app) {
     if (!o->name.empty()) rounded.name = o->name;
     if (!o->description.empty()) rounded.description = o->description;
     report.clear();
-    const double final_cost = learn::walk_cost(rounded, options, &report);
+    int failed = 0;
+    const double final_cost = learn::walk_cost(rounded, options, &report, &failed);
     std::cout << "tuned: cost " << result.cost << " (" << result.evaluations << " walks)\n";
     std::cout << "rounded to " << options.digits << " digits: cost " << final_cost << "\n"
               << report;
+    // A set that cannot walk is not a result (and its files might not even load back).
+    if (failed > 0) {
+      throw std::runtime_error("the tuned set failed " + std::to_string(failed) + " of " +
+                               std::to_string(options.conditions.size()) +
+                               " walks (above); nothing written to " + o->output);
+    }
     io::save_controller_set(rounded, o->output);
     std::cout << "written to " << o->output << "\n";
   });

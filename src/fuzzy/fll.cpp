@@ -46,6 +46,7 @@ class Reader {
   Engine read(std::string_view text) {
     std::vector<Entry> block;
     int number = 0;
+    bool any_entry = false;
     std::size_t start = 0;
     while (start <= text.size()) {
       std::size_t end = text.find('\n', start);
@@ -64,6 +65,7 @@ class Reader {
       if (colon == std::string_view::npos) {
         fail(number, "expected 'key: value', found '" + std::string(line) + "'");
       }
+      any_entry = true;
       Entry entry{number, std::string(trim(line.substr(0, colon))),
                   std::string(trim(line.substr(colon + 1)))};
       if (entry.key == "Engine") {
@@ -84,6 +86,8 @@ class Reader {
       }
       block.push_back(std::move(entry));
     }
+    // An empty file is a mistake (a truncated copy, the wrong path), not an engine.
+    if (!any_entry) fail(1, "no engine: the text is empty (or only comments)");
     process(block);
     return std::move(engine_);
   }
@@ -398,6 +402,10 @@ Engine read_fll(std::string_view text, std::string_view source) {
 }
 
 Engine read_fll_file(const std::filesystem::path& path) {
+  // A directory opens as a stream that reads nothing.
+  if (std::filesystem::is_directory(path)) {
+    throw ParseError(path.string(), 0, "is a directory, not an FLL file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ParseError(path.string(), 0, "cannot open the file");
   std::ostringstream content;

@@ -22,6 +22,10 @@ constexpr std::array<std::string_view, kMetricCount> kMetricNames = {
     "delta", "other_delta", "hip", "knee", "ankle", "toe", "sole"};
 
 std::string read_text(const std::filesystem::path& path) {
+  // A directory opens as a stream that reads nothing.
+  if (std::filesystem::is_directory(path)) {
+    throw std::runtime_error(path.string() + ": is a directory, not a file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path.string() + ": cannot open the file");
   std::ostringstream content;

@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
+#include "fuzzygait/fuzzy/term.hpp"
 #include "fuzzygait/gait/motion.hpp"
 #include "fuzzygait/gait/recovery.hpp"
 #include "fuzzygait/learn/cmaes.hpp"
@@ -217,7 +220,45 @@ std::vector<std::uint64_t> recovery_seeds(int count) {
   return seeds;
 }
 
-double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std::string* report) {
+void validate(const TuneOptions& o) {
+  auto within = [](const char* field, double value, double low, double high) {
+    if (!(value >= low && value <= high)) {
+      throw std::invalid_argument("tune: " + std::string(field) + " must be between " +
+                                  fuzzy::format_scalar(low) + " and " + fuzzy::format_scalar(high) +
+                                  ", got " + fuzzy::format_scalar(value));
+    }
+  };
+  auto ordered = [&within](const char* field, double low, double high, double least, double most) {
+    within(field, low, least, most);
+    within(field, high, low, most);  // the range's high end: from its low end up
+  };
+  within("duration", o.duration, 1.0, 3600.0);
+  within("fps", o.fps, 1.0, 10000.0);
+  ordered("cycle time range", o.cycle_time_min, o.cycle_time_max, 0.1, 10.0);
+  ordered("stance range", o.stance_min, o.stance_max, 0.0, 100.0);
+  ordered("knee peak range", o.knee_peak_min, o.knee_peak_max, 0.0, 180.0);
+  ordered("pelvis range", o.pelvis_range_min, o.pelvis_range_max, 0.0, 1e9);
+  within("minimum inertia", o.minimum_inertia, 0.001, 1.0);
+  within("thigh RMSE bound", o.thigh_rmse_max, 0.0, 180.0);
+  within("knee RMSE bound", o.knee_rmse_max, 0.0, 180.0);
+  within("ankle RMSE bound", o.ankle_rmse_max, 0.0, 180.0);
+  within("slip bound", o.slip_max, 0.0, 1.0);
+  within("step error bound", o.step_error_max, 0.0, 1000.0);
+  within("word penalty bound", o.word_penalty_max, 0.0, 1e9);
+  within("acceleration ratio bound", o.acceleration_ratio_max, 1e-9,
+         std::numeric_limits<double>::infinity());
+  within("generations", o.generations, 1, 1e6);
+  within("polish generations", o.polish_generations, 0, 1e6);
+  within("digits", o.digits, 1, 17);
+  within("threads", o.threads, 1, 1024);
+  within("sigma", o.sigma, 1e-9, 10.0);
+  within("recovery starts", static_cast<double>(o.recovery_seeds.size()), 0, 10000);
+}
+
+double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std::string* report,
+                 int* failed_walks) {
+  validate(options);
+  if (failed_walks) *failed_walks = 0;
   const terrain::Terrain ground = terrain::Terrain::flat();
   const double words = word_penalty(set);
   double total = 10.0 * words + 100.0 * std::max(0.0, words - options.word_penalty_max);
@@ -299,6 +340,7 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
       }
     } catch (const std::exception& e) {
       cost = 1000.0;
+      if (failed_walks) ++*failed_walks;
       if (report)
         *report += "stature/step " + std::to_string(c.stature) + "/" +
                    std::to_string(c.step_length) + ": failed: " + e.what() + "\n";
@@ -309,6 +351,7 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
 }
 
 TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
+  validate(options);
   const SetParameters parameters(start, options.minimum_inertia);
   CmaesOptions cma;
   cma.sigma = options.sigma;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "fuzzygait/fuzzy/fll.hpp"
 
@@ -203,6 +204,23 @@ TEST(Fll, ScalarsReadLikeFuzzylite) {
   EXPECT_FALSE(parse_scalar("1.5m"));
   EXPECT_EQ(format_scalar(0.1), "0.1");
   EXPECT_EQ(format_scalar(-HUGE_VAL), "-inf");
+}
+
+TEST(Fll, AnEmptyFileOrADirectoryIsAnError) {
+  // Not an empty engine that every check then passes: a truncated copy or a wrong path.
+  EXPECT_THAT(error_of(""), HasSubstr("bad.fll:1: no engine: the text is empty"));
+  EXPECT_THAT(error_of("  \n# only a comment\n\n"), HasSubstr("the text is empty"));
+  EXPECT_EQ(error_of("Engine: named\n"), "no error");  // a name is an engine, if a bare one
+  const std::filesystem::path directory =
+      std::filesystem::temp_directory_path() / "fuzzygait_fll_test_directory.fll";
+  std::filesystem::create_directories(directory);
+  try {
+    read_fll_file(directory);
+    ADD_FAILURE() << "read a directory";
+  } catch (const ParseError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("is a directory"));
+  }
+  std::filesystem::remove(directory);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -252,6 +253,61 @@ TEST(Tune, PolishingImprovesTheRoundedValuesItWritesOut) {
   const learn::SetParameters polished(r.set);
   EXPECT_EQ(outputs(polished.rounded(polished.values(), o.digits)), outputs(r.set));
   EXPECT_GT(r.evaluations, tuned.evaluations);
+}
+
+TEST(TuneOptions, OutOfRangeFieldsAreNamed) {
+  const learn::TuneOptions good;
+  EXPECT_NO_THROW(learn::validate(good));
+  const double nan = std::nan("");
+  struct Case {
+    void (*change)(learn::TuneOptions&, double);
+    double value;
+    const char* field;
+  };
+  const Case cases[] = {
+      {[](learn::TuneOptions& o, double v) { o.sigma = v; }, nan, "sigma"},
+      {[](learn::TuneOptions& o, double v) { o.sigma = v; }, 0.0, "sigma"},
+      {[](learn::TuneOptions& o, double v) { o.duration = v; }, 1e308, "duration"},
+      {[](learn::TuneOptions& o, double v) { o.duration = v; }, 0.0, "duration"},
+      {[](learn::TuneOptions& o, double v) { o.cycle_time_min = v; }, nan, "cycle time range"},
+      {[](learn::TuneOptions& o, double v) { o.cycle_time_max = v; }, 0.5, "cycle time range"},
+      {[](learn::TuneOptions& o, double v) { o.stance_min = v; }, 80.0, "stance range"},
+      {[](learn::TuneOptions& o, double v) { o.knee_peak_max = v; }, 1e308, "knee peak range"},
+      {[](learn::TuneOptions& o, double v) { o.pelvis_range_max = v; }, -10.0, "pelvis range"},
+      {[](learn::TuneOptions& o, double v) { o.minimum_inertia = v; }, -1.0, "minimum inertia"},
+      {[](learn::TuneOptions& o, double v) { o.acceleration_ratio_max = v; }, nan,
+       "acceleration ratio"},
+      {[](learn::TuneOptions& o, double v) { o.polish_generations = static_cast<int>(v); }, -5.0,
+       "polish generations"},
+  };
+  for (const Case& c : cases) {
+    learn::TuneOptions o;
+    c.change(o, c.value);
+    try {
+      learn::validate(o);
+      ADD_FAILURE() << c.field << " = " << c.value << " passed";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(c.field), std::string::npos) << e.what();
+    }
+    // The objective and the tuner refuse them too, before walking.
+    EXPECT_THROW(learn::walk_cost(test::default_set(), o), std::invalid_argument) << c.field;
+  }
+}
+
+TEST(WalkCost, CountsTheWalksThatFailed) {
+  // One second is too short for two gait cycles: each condition fails and is counted.
+  learn::TuneOptions o;
+  o.duration = 1.0;
+  o.conditions = {learn::main_condition(io::load_normative("schwartz2008_free"))};
+  int failed = -1;
+  std::string report;
+  EXPECT_EQ(learn::walk_cost(test::default_set(), o, &report, &failed),
+            10.0 * learn::word_penalty(test::default_set()) + 1000.0);
+  EXPECT_EQ(failed, 1);
+  EXPECT_NE(report.find("failed"), std::string::npos);
+  o.duration = 10.0;
+  learn::walk_cost(test::default_set(), o, nullptr, &failed);
+  EXPECT_EQ(failed, 0);
 }
 
 }  // namespace

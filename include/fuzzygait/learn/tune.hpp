@@ -113,9 +113,14 @@ class SetParameters {
 // positive, "fast" faster than the plain word...); 0 when every word is kept.
 double word_penalty(const gait::ControllerSet& set);
 
-// The tuning objective: lower is better. `report` receives a one-line summary per condition.
+// Throws std::invalid_argument naming the first field of `options` out of its range (NaN, a
+// reversed range, a CMA-ES step of zero, ...). walk_cost() and tune() call it.
+void validate(const TuneOptions& options);
+
+// The tuning objective: lower is better. `report` receives a one-line summary per condition;
+// `failed_walks`, how many conditions could not be walked at all (each costs 1000).
 double walk_cost(const gait::ControllerSet& set, const TuneOptions& options,
-                 std::string* report = nullptr);
+                 std::string* report = nullptr, int* failed_walks = nullptr);
 
 struct TuneResult {
   gait::ControllerSet set;  // the best set found (with polishing: its rounded values)
