@@ -45,6 +45,14 @@ double number(const nlohmann::json& manifest, const char* key, double fallback, 
   return v.get<double>();
 }
 
+std::string text(const nlohmann::json& manifest, const char* key, const std::string& source) {
+  if (!manifest.contains(key)) return {};
+  if (!manifest.at(key).is_string()) {
+    throw std::invalid_argument(source + ": '" + key + "' must be a string");
+  }
+  return manifest.at(key).get<std::string>();
+}
+
 }  // namespace
 
 std::string_view slot_name(int slot) {
@@ -122,13 +130,13 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
   nlohmann::json manifest;
   try {
     manifest = nlohmann::json::parse(manifest_text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(manifest_source + ": " + e.what());
   }
   if (!manifest.is_object()) throw std::invalid_argument(manifest_source + ": not a JSON object");
   ControllerSet set;
-  set.name = manifest.value("name", std::string());
-  set.description = manifest.value("description", std::string());
+  set.name = text(manifest, "name", manifest_source);
+  set.description = text(manifest, "description", manifest_source);
   set.inertia = number(manifest, "inertia_s", 0.03, 0.001, 1.0, manifest_source);
   set.pelvis_tilt =
       rig::radians(number(manifest, "pelvis_tilt_deg", 11.0, -45.0, 45.0, manifest_source));
@@ -148,8 +156,12 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
   }
   for (int s = 0; s < kSlotCount; ++s) {
     const std::string key(slot_name(s));
-    if (!names.contains(key) || !names[key].is_string()) {
+    if (!names.contains(key)) {
       throw std::invalid_argument(manifest_source + ": controller '" + key + "' is missing");
+    }
+    if (!names[key].is_string()) {
+      throw std::invalid_argument(manifest_source + ": controller '" + key +
+                                  "' must name an FLL file (a string)");
     }
     const std::string file = names[key].get<std::string>();
     const auto text = files.find(file);

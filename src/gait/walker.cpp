@@ -155,6 +155,7 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
       time_step_(options.time_step),
       controller_backend_(options.controller_backend) {
   rig::validate(segments_);
+  rig::validate(limits_);
   if (controllers.controllers.size() != static_cast<std::size_t>(kSlotCount)) {
     throw std::invalid_argument("the controller set is incomplete");
   }

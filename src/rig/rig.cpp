@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "trigonometry.hpp"
 
@@ -48,6 +49,22 @@ LegTrig trig(const LegOrientation& o) {
 LegPoints forward_kinematics(const Segments& s, Point hip, double pelvis_tilt,
                              const LegAngles& angles) {
   return forward_kinematics(s, hip, trig(orientation(pelvis_tilt, angles)));
+}
+
+void validate(const JointLimits& limits) {
+  const double turn = 2.0 * std::numbers::pi;
+  auto check = [&](const char* joint, double low, double high) {
+    if (!(low >= -turn && high <= turn && low <= high)) {
+      throw std::invalid_argument(std::string("joint limits of the ") + joint +
+                                  " must be finite, within a turn, minimum <= maximum; got " +
+                                  std::to_string(degrees(low)) + " to " +
+                                  std::to_string(degrees(high)) + " deg");
+    }
+  };
+  check("hip", limits.minimum.hip, limits.maximum.hip);
+  check("knee", limits.minimum.knee, limits.maximum.knee);
+  check("ankle", limits.minimum.ankle, limits.maximum.ankle);
+  check("toe", limits.minimum.toe, limits.maximum.toe);
 }
 
 bool JointLimits::contains(const LegAngles& a) const {

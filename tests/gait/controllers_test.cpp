@@ -97,6 +97,19 @@ TEST(ControllerSet, ErrorsNameTheFileAndTheProblem) {
   std::string inertia = manifest;
   inertia.replace(inertia.find("\"inertia_s\""), 11, "\"inertia_s\": -1, \"x\"");
   EXPECT_THAT(error_of(inertia, files), HasSubstr("'inertia_s' must be a number between"));
+  // Wrong JSON types and numbers JSON cannot hold name the file and the key.
+  std::string name = manifest;
+  const std::size_t named = name.find("\"name\"");
+  name.replace(named, name.find(',', named) - named, "\"name\": 5");
+  EXPECT_THAT(error_of(name, files), HasSubstr("set/manifest.json: 'name' must be a string"));
+  std::string slot = manifest;
+  const std::size_t hip = slot.find("\"swing_hip\"");
+  slot.replace(hip, slot.find(',', hip) - hip, "\"swing_hip\": 5");
+  EXPECT_THAT(error_of(slot, files),
+              HasSubstr("set/manifest.json: controller 'swing_hip' must name an FLL file"));
+  std::string huge = manifest;
+  huge.replace(huge.find("\"inertia_s\""), 11, "\"inertia_s\": 1e400, \"x\"");
+  EXPECT_THAT(error_of(huge, files), HasSubstr("set/manifest.json: "));
 }
 
 TEST(ControllerSet, MetricInputsAreCheckedByName) {

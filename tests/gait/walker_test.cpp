@@ -165,6 +165,17 @@ TEST(Walker, BadInputGetsClearErrors) {
   }
   EXPECT_EQ(w.time(), before);
   o.segments = rig::segments_from_stature(1.75);
+  // Joint limits that cannot clamp anything (clamping to them was undefined).
+  for (double knee : {std::nan(""), std::numeric_limits<double>::infinity(), 3.0}) {
+    gait::WalkerOptions bad = o;
+    bad.limits.minimum.knee = knee;  // 3 rad lies above the knee's maximum
+    try {
+      gait::Walker walker(default_set(), bad, ground);
+      ADD_FAILURE() << knee;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("joint limits of the knee"), std::string::npos);
+    }
+  }
   for (double h : {0.0, 1e-12, 0.06, std::nan("")}) {
     o.time_step = h;
     EXPECT_THROW(gait::Walker(default_set(), o, ground), std::invalid_argument) << h;

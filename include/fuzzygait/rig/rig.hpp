@@ -138,6 +138,10 @@ struct JointLimits {
   }
 };
 
+// Throws std::invalid_argument naming the joint when a limit is not finite, beyond a full turn,
+// or a minimum lies above its maximum (clamping to such a range is undefined).
+void validate(const JointLimits& limits);
+
 // Inline: the walker converts its metrics every time step. One multiplication by the ratio (a
 // division per conversion was sixteen divisions a walker step); within an ulp of converting with
 // a multiply and a divide.
