@@ -108,7 +108,8 @@ void add_tune_command(CLI::App& app) {
       if (generation % 10 == 0)
         std::cerr << "generation " << generation << ": cost " << cost << "\n";
     };
-    learn::validate(options);  // before any walk
+    // walk_cost() validates too, but only once "start: cost" is already printed.
+    learn::validate(options);
     std::string report;
     std::cout << "start: cost " << learn::walk_cost(start, options, &report) << "\n" << report;
     const learn::TuneResult result = learn::tune(start, options);

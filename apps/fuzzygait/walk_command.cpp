@@ -45,17 +45,13 @@ gait::StartPose parse_start(const std::string& text) {
     // Digits only: stoull alone takes "-5" (as 2^64 - 5), "+5" and leading blanks.
     const bool digits = !seed.empty() && std::all_of(seed.begin(), seed.end(),
                                                      [](char c) { return c >= '0' && c <= '9'; });
-    std::size_t used = 0;
-    unsigned long long value = 0;
-    try {
-      if (digits) value = std::stoull(seed, &used);
-    } catch (const std::exception&) {  // out of range
-      used = 0;
-    }
-    if (digits && used == seed.size()) {
-      start.random = true;
-      start.seed = value;
-      return start;
+    if (digits) {
+      try {
+        start.seed = std::stoull(seed);
+        start.random = true;
+        return start;
+      } catch (const std::out_of_range&) {  // past 64 bits: refused below
+      }
     }
   }
   throw std::invalid_argument("--start-pose must be 'default' or 'random:SEED', got '" + text +

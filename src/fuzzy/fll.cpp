@@ -401,16 +401,20 @@ Engine read_fll(std::string_view text, std::string_view source) {
   return Reader(source).read(text);
 }
 
-Engine read_fll_file(const std::filesystem::path& path) {
+std::string read_text_file(const std::filesystem::path& path) {
   // A directory opens as a stream that reads nothing.
   if (std::filesystem::is_directory(path)) {
-    throw ParseError(path.string(), 0, "is a directory, not an FLL file");
+    throw ParseError(path.string(), 0, "is a directory, not a file");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ParseError(path.string(), 0, "cannot open the file");
   std::ostringstream content;
   content << in.rdbuf();
-  return read_fll(content.str(), path.string());
+  return content.str();
+}
+
+Engine read_fll_file(const std::filesystem::path& path) {
+  return read_fll(read_text_file(path), path.string());
 }
 
 std::string write_fll(const Engine& engine) {

@@ -2,10 +2,8 @@
 
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "builtin_controllers.hpp"
@@ -20,18 +18,6 @@ constexpr std::array<std::string_view, kSlotCount> kSlotNames = {
     "stance_hip", "stance_knee", "stance_ankle", "stance_toe"};
 constexpr std::array<std::string_view, kMetricCount> kMetricNames = {
     "delta", "other_delta", "hip", "knee", "ankle", "toe", "sole"};
-
-std::string read_text(const std::filesystem::path& path) {
-  // A directory opens as a stream that reads nothing.
-  if (std::filesystem::is_directory(path)) {
-    throw std::runtime_error(path.string() + ": is a directory, not a file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open the file");
-  std::ostringstream content;
-  content << in.rdbuf();
-  return content.str();
-}
 
 double number(const nlohmann::json& manifest, const char* key, double fallback, double low,
               double high, const std::string& source) {
@@ -176,11 +162,11 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
 }
 
 ControllerSet ControllerSet::load(const std::filesystem::path& directory) {
-  const std::string manifest = read_text(directory / "manifest.json");
+  const std::string manifest = fuzzy::read_text_file(directory / "manifest.json");
   std::map<std::string, std::string> files;
   for (const auto& entry : std::filesystem::directory_iterator(directory)) {
     if (entry.path().extension() == ".fll") {
-      files[entry.path().filename().string()] = read_text(entry.path());
+      files[entry.path().filename().string()] = fuzzy::read_text_file(entry.path());
     }
   }
   return parse(manifest, files, directory.string());

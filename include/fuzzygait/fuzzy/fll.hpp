@@ -31,6 +31,9 @@ class ParseError : public std::runtime_error {
 // Defuzzifier::kMaxResolution (10^6).
 Engine read_fll(std::string_view text, std::string_view source = "<fll>");
 Engine read_fll_file(const std::filesystem::path& path);
+// The whole text of the file at `path`; throws ParseError naming it when it is a directory or
+// cannot be opened. The FLL and controller-set readers share it.
+std::string read_text_file(const std::filesystem::path& path);
 
 // Writes FLL that fuzzylite reads, with every number in its shortest exact form, so that
 // reading it back gives the same engine (a lossless round trip).
