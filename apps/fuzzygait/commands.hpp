@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -18,6 +19,24 @@ inline std::ifstream open_or_throw(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open the file");
   return in;
+}
+
+// A number as people write it in a message: "0.7", "36", "nan", "1e+12" (six significant digits).
+inline std::string number_text(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+// Where a command writes PREFIX.csv, PREFIX.bvh ...: a prefix naming a folder would write hidden
+// files (".csv") into it, so it is refused, naming the option.
+inline void check_output_prefix(const std::string& prefix, const std::string& option) {
+  const std::filesystem::path path(prefix);
+  if (prefix.empty() || !path.has_filename() || std::filesystem::is_directory(path)) {
+    throw std::invalid_argument(option + ": '" + prefix +
+                                "' names a folder, not a file prefix (for example '" +
+                                (path / "walk").string() + "')");
+  }
 }
 
 void add_fuzzy_command(CLI::App& app);

@@ -30,7 +30,7 @@ void add_eval_command(CLI::App& app) {
     std::string csv;
     std::string reference = "schwartz2008_free";
     std::string terrain;
-    double step = 0.0;
+    std::optional<double> step;
     std::string json;
   };
   auto o = std::make_shared<Options>();
@@ -44,6 +44,10 @@ void add_eval_command(CLI::App& app) {
   eval->add_option("--step", o->step, "Commanded step length, m, for the step error");
   eval->add_option("--json", o->json, "Write the figures as JSON to this file ('-' for stdout)");
   eval->callback([o]() {
+    if (o->step && !(*o->step > 0.0 && *o->step <= 10.0)) {
+      throw std::invalid_argument("--step must be a step length above 0 and at most 10 m, got " +
+                                  number_text(*o->step));
+    }
     std::ifstream in = open_or_throw(o->csv);
     const gait::Motion motion = io::read_walk_csv(in, o->csv);
     std::string terrain_path = o->terrain;
@@ -54,9 +58,7 @@ void add_eval_command(CLI::App& app) {
     }
     const terrain::Terrain ground = load_terrain(terrain_path);
     const gait::Normative reference = io::load_normative(o->reference);
-    const std::optional<double> step =
-        o->step > 0.0 ? std::optional<double>(o->step) : std::nullopt;
-    const gait::GaitReport report = gait::evaluate(motion, ground, &reference, step);
+    const gait::GaitReport report = gait::evaluate(motion, ground, &reference, o->step);
     const std::string json = gait::to_json(report);
     if (o->json == "-") {
       std::cout << json << "\n";

@@ -128,6 +128,8 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
       rig::radians(number(manifest, "pelvis_tilt_deg", 11.0, -45.0, 45.0, manifest_source));
   set.swing_knee_reference_sweep = rig::radians(
       number(manifest, "swing_knee_reference_sweep_deg", 0.0, 0.0, 180.0, manifest_source));
+  set.shortest_step =
+      number(manifest, "shortest_step_leg_lengths", 0.46, 0.1, 1.2, manifest_source);
   if (!manifest.contains("controllers") || !manifest["controllers"].is_object()) {
     throw std::invalid_argument(manifest_source + ": 'controllers' must map slots to FLL files");
   }

@@ -59,14 +59,14 @@ Motion record_cycles(Walker& walker, int cycles, double fps) {
   Motion motion;
   motion.fps = fps;
   motion.segments = walker.segments();
-  const double limit = 3.0 * (cycles + 2);
+  const long long limit = 3 * (static_cast<long long>(cycles) + 2);  // s
   std::vector<std::size_t> left_strikes;
   for (std::size_t i = 0;; ++i) {
     if (i > 0) walker.advance(1.0 / fps);
     motion.frames.push_back(capture_frame(walker, static_cast<double>(i) / fps));
     if (begins_strike(motion, i, rig::Side::Left, left_strikes)) left_strikes.push_back(i);
     if (left_strikes.size() >= static_cast<std::size_t>(cycles) + 2) break;
-    if (motion.frames.back().time > limit) {
+    if (motion.frames.back().time > static_cast<double>(limit)) {
       throw std::runtime_error("the walker did not complete " + std::to_string(cycles) +
                                " cycles in " + std::to_string(limit) + " s");
     }

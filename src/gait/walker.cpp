@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -41,8 +42,18 @@ constexpr double kReflexSpeed = 10.0;
 // nonsense dt (a timer gone wrong) is an error rather than a program frozen for days or a count
 // of sub-steps overflowing. With the shortest time step it is 3.6e8 sub-steps, within an int.
 constexpr double kLongestAdvance = 3600.0;
+// Longest step, in leg lengths: as far as these legs reach. (The shortest is the controller
+// set's: ControllerSet::shortest_step.)
+constexpr double kLongestStep = 1.2;
 constexpr double kShortestTimeStep = 1e-5;
 constexpr double kLongestTimeStep = 0.05;
+
+// A length in metres for a message, to the millimetre ("0.427 m").
+std::string metres_text(double metres) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f m", metres);
+  return text;
+}
 
 double thigh_of(double tilt, const LegAngles& a) {
   return a.hip - tilt;
@@ -141,8 +152,12 @@ const char* name(Event event) {
   return "?";
 }
 
+double Walker::min_step_length(const ControllerSet& controllers, const rig::Segments& s) {
+  return controllers.shortest_step * s.leg_length();
+}
+
 double Walker::max_step_length(const rig::Segments& s) {
-  return 1.2 * s.leg_length();
+  return kLongestStep * s.leg_length();
 }
 
 Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
@@ -175,11 +190,16 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
 }
 
 void Walker::set_step_length(double metres) {
+  const double shortest = min_step_length(*controllers_, segments_);
   const double longest = max_step_length(segments_);
-  if (!std::isfinite(metres) || metres < 0.05 || metres > longest) {
-    throw std::invalid_argument(
-        "step length must be between 0.05 m and " + std::to_string(longest) +
-        " m (1.2 leg lengths, the reach of these legs), got " + std::to_string(metres));
+  if (!(metres >= shortest && metres <= longest)) {
+    char ratio[16];
+    std::snprintf(ratio, sizeof ratio, "%.2f", controllers_->shortest_step);
+    throw std::invalid_argument("step length must be between " + metres_text(shortest) + " (" +
+                                ratio + " leg lengths, the shortest '" + controllers_->name +
+                                "' walks) and " + metres_text(longest) +
+                                " (1.2 leg lengths, the reach of these legs), got " +
+                                metres_text(metres));
   }
   step_length_ = metres;
 }

@@ -21,6 +21,7 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
     manifest["swing_knee_reference_sweep_deg"] =
         std::round(rig::degrees(set.swing_knee_reference_sweep) * 1e6) / 1e6;
   }
+  manifest["shortest_step_leg_lengths"] = set.shortest_step;
   nlohmann::ordered_json files;
   for (int s = 0; s < gait::kSlotCount; ++s) {
     const std::string name = std::string(gait::slot_name(s)) + ".fll";

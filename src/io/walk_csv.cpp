@@ -1,6 +1,8 @@
 #include "fuzzygait/io/walk_csv.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <istream>
 #include <ostream>
@@ -10,6 +12,7 @@
 #include "csv.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
 #include "fuzzygait/fuzzy/term.hpp"
+#include "fuzzygait/io/svg.hpp"
 
 namespace fuzzygait::io {
 namespace {
@@ -81,6 +84,7 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
   const std::vector<std::string> columns = detail::split_csv_line(line);
   const std::vector<std::size_t> wanted = detail::required_columns(columns, header(), where);
   gait::Motion motion;
+  std::vector<int> frame_lines;  // the line each frame was read from
   int number = 1;
   while (std::getline(in, line)) {
     ++number;
@@ -118,7 +122,13 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
         q->y = v[k++];
       }
     }
+    if (!motion.frames.empty() && !(f.time > motion.frames.back().time)) {
+      throw fuzzy::ParseError(
+          where, number,
+          "column 'time': " + cells[wanted[0]] + " does not come after the row before it");
+    }
     motion.frames.push_back(f);
+    frame_lines.push_back(number);
   }
   if (motion.frames.size() < 2) throw fuzzy::ParseError(where, number, "fewer than two frames");
   // The CSV holds no segment lengths: measure them on the first frame's left leg.
@@ -144,8 +154,25 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
     throw fuzzy::ParseError(
         where, 2, std::string("the leg's points do not make a plausible rig: ") + e.what());
   }
+  // Evaluation takes the frames as evenly spaced: a dropped or doubled frame would shift every
+  // timing figure after it. Each gap is held to the median gap; times are written to the
+  // microsecond, so that much rounding passes.
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < motion.frames.size(); ++i)
+    gaps.push_back(motion.frames[i].time - motion.frames[i - 1].time);
+  std::vector<double> sorted = gaps;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  for (std::size_t i = 0; i < gaps.size(); ++i) {
+    if (std::abs(gaps[i] - median) > 0.01 * median + 2e-6) {
+      throw fuzzy::ParseError(where, frame_lines[i + 1],
+                              "column 'time': frames are not evenly spaced (" +
+                                  svg::format_number(gaps[i], 6) + " s after the row before, " +
+                                  svg::format_number(median, 6) + " s between most)");
+    }
+  }
   const double span = motion.frames.back().time - motion.frames.front().time;
-  if (!(span > 0.0)) throw fuzzy::ParseError(where, number, "time does not increase");
   motion.fps = static_cast<double>(motion.frames.size() - 1) / span;
   return motion;
 }

@@ -20,6 +20,7 @@ namespace {
 using test::read_text;
 using test::run_program;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 std::filesystem::path scratch(const std::string& name) {
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "fuzzygait_cli";
@@ -71,7 +72,9 @@ TEST(WalkCommand, BadOptionsAreRefusedWithTheReason) {
     EXPECT_NE(run.status, 0) << options;
     EXPECT_THAT(run.output, HasSubstr(reason)) << options;
   };
-  refused("--step 3", "step length must be between 0.05 m and");
+  refused("--step 3", "step length must be between 0.427 m (0.46 leg lengths, the shortest");
+  refused("--style heavy --step 0.5", "(0.62 leg lengths, the shortest 'heavy' walks)");
+  refused("--step 0.3", "got 0.300 m");
   refused("--step nan", "step");
   refused("--stature 0", "stature must be between 0.5 and 3.0 m");
   refused("--thigh -0.1 --stature 1.7", "segment 'thigh'");
@@ -82,6 +85,42 @@ TEST(WalkCommand, BadOptionsAreRefusedWithTheReason) {
   refused("--start-pose random:-5", "random:");
   refused("--start-pose random:99999999999999999999999", "random:");
   refused("--cycles 1", "cycles");
+  // CLI11's own range checks let NaN through.
+  refused("--duration nan", "--duration must be between 0 and 36000 s, got nan");
+  refused("--fps nan", "--fps must be between 10 and 2000, got nan");
+  // One frame a second cannot see the feet strike (a cycle takes about one second).
+  refused("--fps 1", "--fps must be between 10 and 2000, got 1");
+}
+
+TEST(WalkCommand, RefusesBeforeWritingAnything) {
+  const std::filesystem::path folder = scratch("prefix_folder");
+  std::filesystem::create_directories(folder);
+  for (const std::string& prefix : {folder.string(), folder.string() + "/"}) {
+    const auto run = run_program("walk --cycles 2 -o " + shell_quoted(prefix));
+    EXPECT_NE(run.status, 0) << prefix;
+    EXPECT_THAT(run.output, HasSubstr("names a folder, not a file prefix")) << prefix;
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(folder)) << "hidden files such as '.csv' were written";
+  const auto run = run_program("walk --cycles 2 --reference no_such_curves -o " +
+                               shell_quoted((folder / "walk").string()));
+  EXPECT_NE(run.status, 0);
+  EXPECT_THAT(run.output, HasSubstr("no_such_curves"));
+  EXPECT_TRUE(std::filesystem::is_empty(folder)) << "files written before the refusal";
+}
+
+TEST(WalkCommand, WarnsWhenTheWalkMissesTheContactBounds) {
+  // The default set meets them; the heavy style at 0.67 m steps lands its heel skimming the
+  // ground, about 2 mm a frame within the last 2 mm (README, "Step lengths"). Both write their
+  // files.
+  const auto sound = run_program("walk --cycles 3 -o " + shell_quoted(scratch("sound")));
+  ASSERT_EQ(sound.status, 0) << sound.output;
+  EXPECT_THAT(sound.output, Not(HasSubstr("warning")));
+  const std::filesystem::path skims = scratch("skims");
+  const auto run =
+      run_program("walk --cycles 3 --style heavy --step 0.67 -o " + shell_quoted(skims));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("warning: this walk misses the contact bounds: foot slip"));
+  EXPECT_TRUE(std::filesystem::exists(skims.string() + ".bvh"));
 }
 
 TEST(EvalCommand, PrintsTheTableAndWritesTheJson) {
@@ -128,6 +167,16 @@ TEST(EvalCommand, BadFilesNameTheFileAndLine) {
   run = run_program("eval " + shell_quoted(good.string() + ".csv") + " --reference nobody");
   EXPECT_NE(run.status, 0);
   EXPECT_THAT(run.output, HasSubstr("nobody"));
+  // A step that is no length: before, nan, 0 and -1 silently meant "no step" and inf printed
+  // "-nan %".
+  for (const char* step : {"nan", "0", "-1", "inf"}) {
+    run = run_program("eval " + shell_quoted(good.string() + ".csv") + " --step " + step);
+    EXPECT_NE(run.status, 0) << step;
+    EXPECT_THAT(run.output, HasSubstr(std::string("--step must be a step length above 0 and at "
+                                                  "most 10 m, got ") +
+                                      step))
+        << step;
+  }
 }
 
 }  // namespace

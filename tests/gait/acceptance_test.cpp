@@ -84,6 +84,41 @@ INSTANTIATE_TEST_SUITE_P(Grid, StepAndStature,
                          ::testing::Combine(::testing::Values(0.50, 0.60, 0.70, 0.85),
                                             ::testing::Values(1.50, 1.75, 2.00)));
 
+// The shortest step the walker takes with the default set (Walker::min_step_length, 0.46 leg
+// lengths) meets the contact bounds too, for every stature of the grid: the refusal below it is
+// where the walk breaks down, not a margin kept for safety's sake (at 0.45 leg lengths the feet
+// slide 60-80 mm a frame).
+TEST(Acceptance, ShortestAcceptedStepIsSound) {
+  for (double stature : {1.50, 1.75, 2.00}) {
+    const double step =
+        gait::Walker::min_step_length(default_set(), rig::segments_from_stature(stature));
+    expect_sound_contact(walk(step, stature, nullptr), "stature " + std::to_string(stature));
+  }
+}
+
+// The styles' shortest steps (their manifests' shortest_step_leg_lengths) are where their walks
+// stop breaking down: from there up, slip stays within a few millimetres a frame and the step
+// within 10 % of the command. They miss the default's tighter bounds at some steps (README, "Step
+// lengths"), but none slides like a walk below its shortest step.
+TEST(Acceptance, StylesHoldTogetherFromTheirShortestStep) {
+  for (const char* name : {"energetic", "heavy", "cautious"}) {
+    const gait::ControllerSet set = gait::ControllerSet::builtin(name);
+    for (double stature : {1.50, 1.75, 2.00}) {
+      const rig::Segments segments = rig::segments_from_stature(stature);
+      const double shortest = gait::Walker::min_step_length(set, segments);
+      for (double step : {shortest, 0.5 * (shortest + gait::Walker::max_step_length(segments))}) {
+        const gait::GaitReport r = walk(step, stature, nullptr, set, 20.0);
+        const std::string label = std::string(name) + " stature " + std::to_string(stature) +
+                                  " step " + std::to_string(step);
+        EXPECT_LT(r.max_slip, 0.005) << label;
+        EXPECT_LT(r.max_penetration, 0.001) << label;
+        EXPECT_LE(r.step_error_percent.value(), 10.0) << label;
+        EXPECT_GE(r.cycles, 8) << label;
+      }
+    }
+  }
+}
+
 TEST(Acceptance, CurvesChangeWithStepLengthAsPeoplesDo) {
   // Schwartz et al.: thigh range and peak knee flexion grow from slow to fast walking.
   const gait::GaitReport short_steps = walk(0.55, 1.75, nullptr);

@@ -107,6 +107,11 @@ TEST(ControllerSet, ErrorsNameTheFileAndTheProblem) {
   slot.replace(hip, slot.find(',', hip) - hip, "\"swing_hip\": 5");
   EXPECT_THAT(error_of(slot, files),
               HasSubstr("set/manifest.json: controller 'swing_hip' must name an FLL file"));
+  std::string shortest = manifest;
+  const std::size_t at = shortest.find("\"shortest_step_leg_lengths\"");
+  shortest.replace(at, shortest.find(',', at) - at, "\"shortest_step_leg_lengths\": 0");
+  EXPECT_THAT(error_of(shortest, files),
+              HasSubstr("'shortest_step_leg_lengths' must be a number between"));
   std::string huge = manifest;
   huge.replace(huge.find("\"inertia_s\""), 11, "\"inertia_s\": 1e400, \"x\"");
   EXPECT_THAT(error_of(huge, files), HasSubstr("set/manifest.json: "));

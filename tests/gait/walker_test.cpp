@@ -181,6 +181,20 @@ TEST(Walker, BadInputGetsClearErrors) {
     EXPECT_THROW(gait::Walker(default_set(), o, ground), std::invalid_argument) << h;
   }
   EXPECT_THROW(w.set_step_length(-0.1), std::invalid_argument);
+  // Steps shorter than the set's shortest (0.46 leg lengths for the default) are refused,
+  // naming the limit; the limit itself walks.
+  const double shortest = gait::Walker::min_step_length(default_set(), w.segments());
+  EXPECT_NEAR(shortest, 0.46 * w.segments().leg_length(), 1e-12);
+  try {
+    w.set_step_length(0.99 * shortest);
+    ADD_FAILURE() << "a step of 0.45 leg lengths was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("(0.46 leg lengths, the shortest 'default' walks)"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(w.set_step_length(shortest));
+  EXPECT_NO_THROW(w.set_step_length(gait::Walker::max_step_length(w.segments())));
 }
 
 TEST(Walker, AdvancingAllocatesNothing) {

@@ -154,8 +154,17 @@ TEST(WalkCsv, ErrorsNameTheFileLineAndColumn) {
   EXPECT_THAT(read_error(nan), HasSubstr("'nan' is not a finite number"));
 
   EXPECT_THAT(read_error(header + "\n" + rows[1] + "\n"), HasSubstr("fewer than two frames"));
+  // Two rows of the same time, rows out of order, a dropped frame: each named by its line.
   EXPECT_THAT(read_error(header + "\n" + rows[1] + "\n" + rows[1] + "\n"),
-              HasSubstr("time does not increase"));
+              HasSubstr("walk.csv:3: column 'time': 0.000000 does not come after the row before"));
+  std::string swapped = header + "\n";
+  std::string dropped = header + "\n";
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    swapped += rows[i == 5 ? 6 : i == 6 ? 5 : i] + "\n";
+    if (i != 20) dropped += rows[i] + "\n";
+  }
+  EXPECT_THAT(read_error(swapped), HasSubstr("walk.csv:7: column 'time'"));
+  EXPECT_THAT(read_error(dropped), HasSubstr("walk.csv:21: column 'time': frames are not evenly"));
   // A row cut short names the first column it lacks.
   EXPECT_THAT(read_error(header + "\n" + rows[1] + "\n" + rows[2].substr(0, 20) + "\n"),
               HasSubstr("walk.csv:3"));

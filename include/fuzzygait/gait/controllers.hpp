@@ -94,6 +94,9 @@ struct ControllerSet {
   // landing); a longer sweep (a longer step) scales them up in proportion, so the knee folds
   // deeper on longer steps, as people's do. 0: no scaling.
   double swing_knee_reference_sweep = 0.0;
+  // Shortest step, in leg lengths, that this set walks without losing its rhythm (measured over
+  // statures 1.50-2.00 m; README, "Step lengths"). The walker refuses shorter steps.
+  double shortest_step = 0.46;
   std::vector<Controller> controllers;  // indexed by slot()
 
   const Controller& at(LegPhase phase, Joint joint) const {

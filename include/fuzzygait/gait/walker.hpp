@@ -108,11 +108,12 @@ class Walker {
  public:
   // The controller set and terrain must outlive the walker and stay unchanged while it walks (it
   // keeps a workspace made for each of the set's controllers). Throws std::invalid_argument for
-  // a bad rig, or a step length the legs cannot reach (it names the limit).
+  // a bad rig, or a step length outside min_step_length() to max_step_length() (it names them).
   Walker(const ControllerSet& controllers, const WalkerOptions& options,
          const terrain::Terrain& terrain);
 
-  // Changes the commanded step length; it applies from the next foot placement.
+  // Changes the commanded step length; it applies from the next foot placement. Throws
+  // std::invalid_argument outside min_step_length() to max_step_length().
   void set_step_length(double metres);
   double step_length() const { return step_length_; }
 
@@ -133,7 +134,11 @@ class Walker {
   const std::vector<EventRecord>& events() const { return events_; }
   void clear_events() { events_.clear(); }
 
-  // Longest step the legs can make (metres).
+  // Shortest step the walker takes with these controllers (metres): the set's shortest_step
+  // leg lengths (0.46 for the default set). Shorter steps lose the gait's rhythm (the heel lifts
+  // at once after foot flat, the pelvis rolls back, the feet slide), so they are refused.
+  static double min_step_length(const ControllerSet& controllers, const rig::Segments& segments);
+  // Longest step the legs can make (metres): 1.2 leg lengths.
   static double max_step_length(const rig::Segments& segments);
 
  private:
