@@ -4,7 +4,6 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -19,13 +18,6 @@ inline std::ifstream open_or_throw(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open the file");
   return in;
-}
-
-// A number as people write it in a message: "0.7", "36", "nan", "1e+12" (six significant digits).
-inline std::string number_text(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
 }
 
 // Where a command writes PREFIX.csv, PREFIX.bvh ...: a prefix naming a folder would write hidden

@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "fuzzygait/gait/evaluation.hpp"
 #include "fuzzygait/io/normative.hpp"
+#include "fuzzygait/io/svg.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
 
 namespace fuzzygait::cli {
@@ -46,7 +47,7 @@ void add_eval_command(CLI::App& app) {
   eval->callback([o]() {
     if (o->step && !(*o->step > 0.0 && *o->step <= 10.0)) {
       throw std::invalid_argument("--step must be a step length above 0 and at most 10 m, got " +
-                                  number_text(*o->step));
+                                  io::svg::format_number(*o->step, 6));
     }
     std::ifstream in = open_or_throw(o->csv);
     const gait::Motion motion = io::read_walk_csv(in, o->csv);

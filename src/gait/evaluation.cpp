@@ -324,6 +324,24 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
   return r;
 }
 
+std::vector<std::string> missed_contact_bounds(const GaitReport& r) {
+  std::vector<std::string> missed;
+  char line[160];
+  auto check = [&](bool met, const char* format, double value) {
+    if (met) return;
+    std::snprintf(line, sizeof line, format, value);
+    missed.emplace_back(line);
+  };
+  check(r.max_slip < 0.001, "foot slip %.2f mm a frame (bound 1 mm)", r.max_slip * 1000.0);
+  check(r.max_penetration < 0.001, "penetration %.2f mm (bound 1 mm)", r.max_penetration * 1000.0);
+  check(r.min_toe_clearance >= 0.005, "toe clearance %.2f mm (bound 5 mm)",
+        r.min_toe_clearance * 1000.0);
+  if (r.step_error_percent) {
+    check(*r.step_error_percent <= 3.0, "step error %.2f %% (bound 3 %%)", *r.step_error_percent);
+  }
+  return missed;
+}
+
 std::string to_text(const GaitReport& r) {
   std::string out;
   char line[200];

@@ -48,13 +48,6 @@ constexpr double kLongestStep = 1.2;
 constexpr double kShortestTimeStep = 1e-5;
 constexpr double kLongestTimeStep = 0.05;
 
-// A length in metres for a message, to the millimetre ("0.427 m").
-std::string metres_text(double metres) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3f m", metres);
-  return text;
-}
-
 double thigh_of(double tilt, const LegAngles& a) {
   return a.hip - tilt;
 }
@@ -193,13 +186,16 @@ void Walker::set_step_length(double metres) {
   const double shortest = min_step_length(*controllers_, segments_);
   const double longest = max_step_length(segments_);
   if (!(metres >= shortest && metres <= longest)) {
-    char ratio[16];
-    std::snprintf(ratio, sizeof ratio, "%.2f", controllers_->shortest_step);
-    throw std::invalid_argument("step length must be between " + metres_text(shortest) + " (" +
-                                ratio + " leg lengths, the shortest '" + controllers_->name +
-                                "' walks) and " + metres_text(longest) +
-                                " (1.2 leg lengths, the reach of these legs), got " +
-                                metres_text(metres));
+    auto fixed = [](double value, int decimals) {
+      char text[400];  // room for any double in full
+      std::snprintf(text, sizeof text, "%.*f", decimals, value);
+      return std::string(text);
+    };
+    throw std::invalid_argument(
+        "step length must be between " + fixed(shortest, 3) + " m (" +
+        fixed(controllers_->shortest_step, 2) + " leg lengths, the shortest '" +
+        controllers_->name + "' walks) and " + fixed(longest, 3) + " m (" + fixed(kLongestStep, 1) +
+        " leg lengths, the reach of these legs), got " + fixed(metres, 3) + " m");
   }
   step_length_ = metres;
 }

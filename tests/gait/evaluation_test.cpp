@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
@@ -165,4 +166,26 @@ TEST(StepError, OnlyAgainstACommandedStep) {
 }
 
 }  // namespace
+// Each contact bound of the acceptance is judged on its own figure, at its edge, and named with
+// the figure and the bound; the step error only against a commanded step.
+TEST(ContactBounds, NamesEachMissedBoundWithItsFigure) {
+  gait::GaitReport r;
+  r.max_slip = 0.00099;
+  r.max_penetration = 0.0;
+  r.min_toe_clearance = 0.005;
+  EXPECT_TRUE(gait::missed_contact_bounds(r).empty());
+  r.step_error_percent = 3.0;
+  EXPECT_TRUE(gait::missed_contact_bounds(r).empty());
+  r.max_slip = 0.001;
+  r.max_penetration = 0.0012;
+  r.min_toe_clearance = 0.0049;
+  r.step_error_percent = 3.04;
+  const std::vector<std::string> missed = gait::missed_contact_bounds(r);
+  ASSERT_EQ(missed.size(), 4u);
+  EXPECT_EQ(missed[0], "foot slip 1.00 mm a frame (bound 1 mm)");
+  EXPECT_EQ(missed[1], "penetration 1.20 mm (bound 1 mm)");
+  EXPECT_EQ(missed[2], "toe clearance 4.90 mm (bound 5 mm)");
+  EXPECT_EQ(missed[3], "step error 3.04 % (bound 3 %)");
+}
+
 }  // namespace fuzzygait
