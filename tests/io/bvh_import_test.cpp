@@ -3,7 +3,7 @@
 // (tests/blender/bvh_angles.py). Each prints per frame the sagittal angles and the joint positions
 // it sees; they must match the walk's CSV (write_walk_csv) to 0.01 degrees and 0.1 mm. A test
 // skips, saying why, when its importer is not there. The files stay in the build tree
-// (FUZZYGAIT_BVH_IMPORT_DIR) for a look.
+// (FUZZYGAIT_BVH_IMPORT_DIR, one folder per test) for a look.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -35,7 +35,9 @@ constexpr double kAngleTolerance = 0.01;     // degrees
 constexpr double kPositionTolerance = 1e-4;  // metres
 constexpr double kUnitsPerMetre = 100.0;     // the BVH's centimetres
 
-// The walk, its BVH and its CSV, written once for all importers.
+// The walk, its BVH and its CSV, written once per test process. CTest runs the importers' tests
+// in parallel processes, so each writes into its own folder, named after the test: sharing one
+// file let one process truncate the BVH while another's importer was reading it.
 struct Walk {
   Motion motion;    // as recorded
   Motion from_csv;  // as the walk CSV holds it (degrees to 4 decimals, metres to 6)
@@ -49,7 +51,8 @@ const Walk& walk() {
     fuzzygait::gait::Walker walker(controllers, fuzzygait::gait::WalkerOptions{}, ground);
     Walk made;
     made.motion = fuzzygait::gait::record(walker, 10.0, 120.0);
-    const fs::path dir = FUZZYGAIT_BVH_IMPORT_DIR;
+    const fs::path dir = fs::path(FUZZYGAIT_BVH_IMPORT_DIR) /
+                         ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::create_directories(dir);
     made.bvh = dir / "walk.bvh";
     const fs::path csv = dir / "walk.csv";
