@@ -41,7 +41,7 @@ struct Entry {
 
 class Reader {
  public:
-  explicit Reader(std::string_view source) : source_(source) {}
+  Reader(std::string_view source, const FllOptions& options) : source_(source), options_(options) {}
 
   Engine read(std::string_view text) {
     std::vector<Entry> block;
@@ -104,8 +104,17 @@ class Reader {
   }
 
   double scalar(const Entry& e, std::string_view text, const std::string& what) const {
-    if (const std::optional<double> v = parse_scalar(text)) return *v;
-    fail(e.line, what + " must be a number, found '" + std::string(text) + "'");
+    const std::optional<double> v = parse_scalar(text);
+    if (!v) fail(e.line, what + " must be a number, found '" + std::string(text) + "'");
+    finite(e, *v, what);
+    return *v;
+  }
+
+  // Under FllOptions::finite_numbers, a number that is nan or infinite is an error.
+  void finite(const Entry& e, double value, const std::string& what) const {
+    if (options_.finite_numbers && !std::isfinite(value)) {
+      fail(e.line, what + " must be a finite number here, found '" + format_scalar(value) + "'");
+    }
   }
 
   int count(const Entry& e, std::string_view text, const std::string& what) const {
@@ -160,11 +169,22 @@ class Reader {
     if (!kind) fail(e.line, "unknown term shape '" + std::string(w[1]) + "'");
     const std::size_t rest =
         w.size() > 2 ? static_cast<std::size_t>(w[2].data() - e.value.data()) : e.value.size();
+    Term made;
     try {
-      return make_term(term_name, *kind, std::string_view(e.value).substr(rest));
+      made = make_term(term_name, *kind, std::string_view(e.value).substr(rest));
     } catch (const std::invalid_argument& error) {
       fail(e.line, error.what());
     }
+    const TermShapeInfo& shape = shape_info(made.kind);
+    for (std::size_t i = 0; i < made.parameters.size(); ++i) {
+      // Shapes of a fixed parameter count name each parameter; Discrete and Linear count them.
+      finite(e, made.parameters[i],
+             "term '" + term_name + "' parameter " +
+                 (shape.parameter_count >= 0 ? "'" + std::string(shape.parameter_names[i]) + "'"
+                                             : std::to_string(i + 1)));
+    }
+    finite(e, made.height, "term '" + term_name + "' height");
+    return made;
   }
 
   void process(const std::vector<Entry>& block) {
@@ -348,6 +368,7 @@ class Reader {
         } catch (const std::invalid_argument& error) {
           fail(e.line, error.what());
         }
+        finite(e, b.rules.back().weight, "rule weight");
       } else {
         fail(e.line, "unknown key '" + e.key + "' in RuleBlock '" + b.name + "'");
       }
@@ -356,6 +377,7 @@ class Reader {
   }
 
   std::string source_;
+  FllOptions options_;
   Engine engine_;
   std::unordered_set<std::string> variable_names_;
 };
@@ -397,8 +419,8 @@ ParseError::ParseError(std::string source, int line, const std::string& message)
       source_(std::move(source)),
       line_(line) {}
 
-Engine read_fll(std::string_view text, std::string_view source) {
-  return Reader(source).read(text);
+Engine read_fll(std::string_view text, std::string_view source, const FllOptions& options) {
+  return Reader(source, options).read(text);
 }
 
 std::string read_text_file(const std::filesystem::path& path) {
@@ -413,8 +435,8 @@ std::string read_text_file(const std::filesystem::path& path) {
   return content.str();
 }
 
-Engine read_fll_file(const std::filesystem::path& path) {
-  return read_fll(read_text_file(path), path.string());
+Engine read_fll_file(const std::filesystem::path& path, const FllOptions& options) {
+  return read_fll(read_text_file(path), path.string(), options);
 }
 
 std::string write_fll(const Engine& engine) {

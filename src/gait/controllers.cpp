@@ -158,7 +158,8 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
                                   "', which is not in the set");
     }
     const std::string path = source + "/" + file;
-    set.controllers.emplace_back(fuzzy::read_fll(text->second, path), path);
+    set.controllers.emplace_back(
+        fuzzy::read_fll(text->second, path, fuzzy::FllOptions{.finite_numbers = true}), path);
   }
   return set;
 }

@@ -33,6 +33,16 @@ gait::Normative read_normative_csv(std::istream& in, std::string_view source) {
       if (!v || !std::isfinite(*v)) {
         throw fuzzy::ParseError(where, number, "column '" + wanted[k] + "' is not a finite number");
       }
+      // Angles in degrees: a mean beyond a half turn or a negative spread is a wrong unit or a
+      // wrong column, and would draw a band upside down or off the plot.
+      const bool is_sd = wanted[k].ends_with("_sd");
+      const double low = is_sd ? 0.0 : -180.0;
+      if (k > 0 && (*v < low || *v > 180.0)) {
+        throw fuzzy::ParseError(where, number,
+                                "column '" + wanted[k] + "' is " + fuzzy::format_scalar(*v) +
+                                    (is_sd ? "; a standard deviation in degrees is 0 to 180"
+                                           : "; a mean angle in degrees is -180 to 180"));
+      }
       row[k] = *v;
     }
     if (!rows.empty() && !(row[0] > rows.back()[0])) {

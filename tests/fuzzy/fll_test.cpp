@@ -206,6 +206,41 @@ TEST(Fll, ScalarsReadLikeFuzzylite) {
   EXPECT_EQ(format_scalar(-HUGE_VAL), "-inf");
 }
 
+TEST(Fll, FiniteNumbersRefusesNanAndInfinityWhereverANumberIs) {
+  const FllOptions finite{.finite_numbers = true};
+  EXPECT_NO_THROW(read_fll(
+      std::string(kSmall).replace(std::string(kSmall).find("default: nan"), 12, "default: 0"),
+      "ok.fll", finite));
+  struct Case {
+    std::string from, to, error;
+  };
+  const Case cases[] = {
+      {"default: nan", "default: nan",
+       "bad.fll:15: default must be a finite number here, found 'nan'"},
+      {"range: 0 1", "range: 0 inf", "bad.fll:5: range maximum must be a finite number here"},
+      {"range: -1 1", "range: -inf 1", "bad.fll:11: range minimum must be a finite number"},
+      {"low Triangle 0 0 0.5", "low Triangle 0 nan 0.5",
+       "bad.fll:7: term 'low' parameter 'vertexB' must be a finite number here, found 'nan'"},
+      {"high Triangle 0.5 1 1 0.75", "high Triangle 0.5 1 1 inf",
+       "bad.fll:8: term 'high' height must be a finite number"},
+      {"neg Ramp 0 -1", "neg Discrete 0 0 1 nan", "bad.fll:17: term 'neg' parameter 4 must"},
+      {"with 0.5", "with nan", "bad.fll:26: rule weight must be a finite number here"},
+      {"Highest 2", "Threshold >= inf", "bad.fll:24: threshold must be a finite number"},
+  };
+  for (const Case& c : cases) {
+    std::string text = kSmall;
+    if (c.from != "default: nan") text.replace(text.find("default: nan"), 12, "default: 0");
+    text.replace(text.find(c.from), c.from.size(), c.to);
+    EXPECT_NO_THROW(read_fll(text, "bad.fll")) << c.to << ": fuzzylite reads it, and so do we";
+    try {
+      read_fll(text, "bad.fll", finite);
+      ADD_FAILURE() << c.to << " was read";
+    } catch (const ParseError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(c.error)) << c.to;
+    }
+  }
+}
+
 TEST(Fll, AnEmptyFileOrADirectoryIsAnError) {
   // Not an empty engine that every check then passes: a truncated copy or a wrong path.
   EXPECT_THAT(error_of(""), HasSubstr("bad.fll:1: no engine: the text is empty"));

@@ -112,6 +112,17 @@ TEST(ControllerSet, ErrorsNameTheFileAndTheProblem) {
   shortest.replace(at, shortest.find(',', at) - at, "\"shortest_step_leg_lengths\": 0");
   EXPECT_THAT(error_of(shortest, files),
               HasSubstr("'shortest_step_leg_lengths' must be a number between"));
+  // A joint controller's numbers are finite: a NaN speed or a term over nothing walks nonsense.
+  broken = files;
+  std::string& hip_file = broken.at("swing_hip.fll");
+  const std::size_t fast = hip_file.find("term: fast Constant ");
+  hip_file.replace(fast, hip_file.find('\n', fast) - fast, "term: fast Constant nan");
+  const int line =
+      1 + static_cast<int>(std::count(hip_file.begin(), hip_file.begin() + fast, '\n'));
+  EXPECT_THAT(
+      error_of(manifest, broken),
+      HasSubstr("set/swing_hip.fll:" + std::to_string(line) +
+                ": term 'fast' parameter 'value' must be a finite number here, found 'nan'"));
   std::string huge = manifest;
   huge.replace(huge.find("\"inertia_s\""), 11, "\"inertia_s\": 1e400, \"x\"");
   EXPECT_THAT(error_of(huge, files), HasSubstr("set/manifest.json: "));

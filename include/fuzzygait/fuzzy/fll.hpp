@@ -29,8 +29,15 @@ class ParseError : public std::runtime_error {
 // time: a '\r' inside a line (only "\r\n" line endings), a Discrete x that is nan, a
 // variable named 'and' or 'or', and a defuzzifier resolution above
 // Defuzzifier::kMaxResolution (10^6).
-Engine read_fll(std::string_view text, std::string_view source = "<fll>");
-Engine read_fll_file(const std::filesystem::path& path);
+struct FllOptions {
+  // Refuse nan and infinities wherever the text gives a number (ranges, term parameters and
+  // heights, the default, rule weights, thresholds). fuzzylite reads them, and so does read_fll
+  // by default; a joint controller cannot use them (a NaN speed, a term that covers nothing).
+  bool finite_numbers = false;
+};
+Engine read_fll(std::string_view text, std::string_view source = "<fll>",
+                const FllOptions& options = {});
+Engine read_fll_file(const std::filesystem::path& path, const FllOptions& options = {});
 // The whole text of the file at `path`; throws ParseError naming it when it is a directory or
 // cannot be opened. The FLL and controller-set readers share it.
 std::string read_text_file(const std::filesystem::path& path);
