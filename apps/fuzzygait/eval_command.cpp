@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "fuzzygait/gait/evaluation.hpp"
+#include "fuzzygait/io/files.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/io/svg.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
@@ -67,9 +68,7 @@ void add_eval_command(CLI::App& app) {
     }
     std::cout << "reference: " << reference.name << "\n" << gait::to_text(report);
     if (!o->json.empty()) {
-      std::ofstream out(o->json);
-      out << json << "\n";
-      if (!out) throw std::runtime_error(o->json + ": cannot write");
+      io::write_file(o->json, json + "\n");
     }
   });
 }

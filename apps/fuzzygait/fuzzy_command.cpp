@@ -10,6 +10,7 @@
 #include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/fuzzy/fld.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
+#include "fuzzygait/io/files.hpp"
 
 namespace fuzzygait::cli {
 namespace {
@@ -218,8 +219,7 @@ void add_fuzzy_command(CLI::App& app) {
     if (export_output->empty()) {
       std::cout << text.str();
     } else {
-      std::ofstream out(*export_output);
-      if (!(out << text.str())) throw std::runtime_error(*export_output + ": cannot write");
+      io::write_file(*export_output, text.str());
     }
   });
 

@@ -11,13 +11,20 @@ int main(int argc, char** argv) {
   fuzzygait::cli::add_eval_command(app);
   fuzzygait::cli::add_fuzzy_command(app);
   fuzzygait::cli::add_tune_command(app);
+  int status = 0;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    status = app.exit(e);
   } catch (const std::exception& e) {
     std::cerr << "fuzzygait: error: " << e.what() << "\n";
-    return 1;
+    status = 1;
   }
-  return 0;
+  // What was printed must have arrived: a full disk or a closed pipe under `> file` or `| tool`
+  // would otherwise end in success with the report or the exported table cut short.
+  if (!std::cout.flush()) {
+    std::cerr << "fuzzygait: error: cannot write to standard output\n";
+    return status != 0 ? status : 1;
+  }
+  return status;
 }

@@ -2,7 +2,6 @@
 // the terrain, a BVH, the joint-angle curves against the normative band, and the poses.
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -12,6 +11,7 @@
 #include "fuzzygait/gait/evaluation.hpp"
 #include "fuzzygait/gait/motion.hpp"
 #include "fuzzygait/io/bvh.hpp"
+#include "fuzzygait/io/files.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/io/svg.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
@@ -129,21 +129,15 @@ void add_walk_command(CLI::App& app) {
                                                   : gait::record_cycles(walker, o->cycles, o->fps);
     const std::filesystem::path prefix(o->prefix);
     if (prefix.has_parent_path()) std::filesystem::create_directories(prefix.parent_path());
-    {
-      std::ofstream csv(o->prefix + ".csv");
-      io::write_walk_csv(csv, motion);
-      if (!csv) throw std::runtime_error(o->prefix + ".csv: cannot write");
-      std::ofstream terrain_csv(o->prefix + ".terrain.csv");
+    io::write_file(o->prefix + ".csv",
+                   [&motion](std::ostream& out) { io::write_walk_csv(out, motion); });
+    io::write_file(o->prefix + ".terrain.csv", [&](std::ostream& out) {
       const double x0 = motion.frames.front().pose.pelvis.x - 2.0;
       const double x1 = motion.frames.back().pose.pelvis.x + 2.0;
-      io::write_terrain_csv(terrain_csv, ground, x0, x1);
-      if (!terrain_csv) throw std::runtime_error(o->prefix + ".terrain.csv: cannot write");
-    }
-    {
-      std::ofstream bvh(o->prefix + ".bvh");
-      io::write_bvh(bvh, motion);
-      if (!bvh) throw std::runtime_error(o->prefix + ".bvh: cannot write");
-    }
+      io::write_terrain_csv(out, ground, x0, x1);
+    });
+    io::write_file(o->prefix + ".bvh",
+                   [&motion](std::ostream& out) { io::write_bvh(out, motion); });
     std::cout << "walked " << motion.frames.size() << " frames (" << motion.frames.back().time
               << " s) with controller set '" << set.name << "'\n";
     std::vector<std::string> written = {o->prefix + ".csv", o->prefix + ".terrain.csv",
@@ -161,9 +155,7 @@ void add_walk_command(CLI::App& app) {
     try {
       const svg::Figure animation = io::plot_walk_animation(motion, ground);
       const svg::Figure filmstrip = io::plot_filmstrip(motion, ground);
-      std::ofstream poses(o->prefix + ".poses.svg");
-      poses << svg::stack_figures({&animation, &filmstrip});
-      if (!poses) throw std::runtime_error(o->prefix + ".poses.svg: cannot write");
+      io::write_file(o->prefix + ".poses.svg", svg::stack_figures({&animation, &filmstrip}));
       written.push_back(o->prefix + ".poses.svg");
     } catch (const std::invalid_argument& e) {
       std::cout << "no poses: " << e.what() << "\n";

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "../rig/trigonometry.hpp"
+#include "fuzzygait/fuzzy/term.hpp"
 #include "splitmix64.hpp"
 
 namespace fuzzygait::gait {
@@ -169,7 +170,7 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
   }
   if (!(time_step_ >= kShortestTimeStep && time_step_ <= kLongestTimeStep)) {
     throw std::invalid_argument("time step must be between 0.00001 and 0.05 s, got " +
-                                std::to_string(time_step_));
+                                fuzzy::format_scalar(time_step_));
   }
   set_step_length(options.step_length);
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
@@ -643,7 +644,7 @@ void Walker::command(const std::array<MetricValues, 2>& metrics,
 void Walker::advance(double dt) {
   if (!(dt >= 0.0 && dt <= kLongestAdvance)) {
     throw std::invalid_argument("advance: dt must be between 0 and 3600 s, got " +
-                                std::to_string(dt));
+                                fuzzy::format_scalar(dt));
   }
   const double steps = std::ceil(dt / time_step_ - 1e-9);
   const int n = std::max(1, static_cast<int>(steps));

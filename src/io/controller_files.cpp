@@ -1,11 +1,10 @@
 #include "fuzzygait/io/controller_files.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <stdexcept>
 
 #include "fuzzygait/fuzzy/fll.hpp"
+#include "fuzzygait/io/files.hpp"
 #include "fuzzygait/rig/rig.hpp"
 
 namespace fuzzygait::io {
@@ -26,14 +25,11 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
   for (int s = 0; s < gait::kSlotCount; ++s) {
     const std::string name = std::string(gait::slot_name(s)) + ".fll";
     files[std::string(gait::slot_name(s))] = name;
-    std::ofstream out(directory / name);
-    out << fuzzy::write_fll(set.controllers.at(static_cast<std::size_t>(s)).engine());
-    if (!out) throw std::runtime_error((directory / name).string() + ": cannot write");
+    write_file(directory / name,
+               fuzzy::write_fll(set.controllers.at(static_cast<std::size_t>(s)).engine()));
   }
   manifest["controllers"] = files;
-  std::ofstream out(directory / "manifest.json");
-  out << manifest.dump(2) << "\n";
-  if (!out) throw std::runtime_error((directory / "manifest.json").string() + ": cannot write");
+  write_file(directory / "manifest.json", manifest.dump(2) + "\n");
 }
 
 }  // namespace fuzzygait::io

@@ -4,12 +4,13 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <utility>
 #include <variant>
+
+#include "fuzzygait/io/files.hpp"
 
 namespace fuzzygait::io::svg {
 
@@ -2029,11 +2030,7 @@ std::string Figure::svg() const {
 }
 
 void Figure::save(const std::filesystem::path& path) const {
-  const std::string text = svg();
-  std::ofstream file(path, std::ios::binary);
-  if (!file || !file.write(text.data(), static_cast<std::streamsize>(text.size()))) {
-    throw std::runtime_error(path.string() + ": cannot write the SVG file");
-  }
+  write_file(path, svg());
 }
 
 std::string stack_figures(const std::vector<const Figure*>& figures) {

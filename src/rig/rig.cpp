@@ -1,6 +1,7 @@
 #include "fuzzygait/rig/rig.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -9,11 +10,21 @@
 #include "trigonometry.hpp"
 
 namespace fuzzygait::rig {
+namespace {
+
+// The shortest text that reads back to the number: "1e-07" and "1e+300", where std::to_string
+// would print "0.000000" and three hundred digits.
+std::string number_text(double value) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+}
+
+}  // namespace
 
 Segments segments_from_stature(double stature) {
   if (!std::isfinite(stature) || stature < 0.5 || stature > 3.0) {
     throw std::invalid_argument("stature must be between 0.5 and 3.0 m, got " +
-                                std::to_string(stature));
+                                number_text(stature));
   }
   const double foot = 0.152 * stature;
   Segments s;
@@ -30,8 +41,8 @@ void validate(const Segments& s) {
   auto check = [](const char* field, double value, double low, double high) {
     if (!std::isfinite(value) || value < low || value > high) {
       throw std::invalid_argument(std::string("segment '") + field + "' must be between " +
-                                  std::to_string(low) + " and " + std::to_string(high) +
-                                  " m, got " + std::to_string(value));
+                                  number_text(low) + " and " + number_text(high) + " m, got " +
+                                  number_text(value));
     }
   };
   check("thigh", s.thigh, 0.05, 1.5);
@@ -57,8 +68,8 @@ void validate(const JointLimits& limits) {
     if (!(low >= -turn && high <= turn && low <= high)) {
       throw std::invalid_argument(std::string("joint limits of the ") + joint +
                                   " must be finite, within a turn, minimum <= maximum; got " +
-                                  std::to_string(degrees(low)) + " to " +
-                                  std::to_string(degrees(high)) + " deg");
+                                  number_text(degrees(low)) + " to " + number_text(degrees(high)) +
+                                  " deg");
     }
   };
   check("hip", limits.minimum.hip, limits.maximum.hip);

@@ -2,7 +2,9 @@
 // the figures eval prints (table and JSON), and clear errors for bad options and bad files.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -121,6 +123,31 @@ TEST(WalkCommand, WarnsWhenTheWalkMissesTheContactBounds) {
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_THAT(run.output, HasSubstr("warning: this walk misses the contact bounds: foot slip"));
   EXPECT_TRUE(std::filesystem::exists(skims.string() + ".bvh"));
+}
+
+// A full disk is an error, not a success with the output cut short: in a small file (written
+// only when closed) and on standard output. Linux's /dev/full refuses every write.
+TEST(WalkCommand, AFullDiskIsAnError) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full on this system";
+  const std::filesystem::path prefix = scratch("full");
+  const std::filesystem::path terrain = prefix.string() + ".terrain.csv";
+  std::filesystem::remove(terrain);
+  std::filesystem::create_symlink("/dev/full", terrain);
+  const auto run = run_program("walk --cycles 2 -o " + shell_quoted(prefix));
+  std::filesystem::remove(terrain);
+  EXPECT_NE(run.status, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr(terrain.string() + ": cannot write (No space left on device)"));
+  const std::filesystem::path errors = scratch("full_stdout.err");
+  for (const std::string& arguments :
+       {"walk --cycles 2 -o " + shell_quoted(prefix), std::string("--help"),
+        "eval " + shell_quoted(prefix.string() + ".csv")}) {
+    const int status = std::system(("\"" + std::string(FUZZYGAIT_CLI) + "\" " + arguments +
+                                    " > /dev/full 2> " + shell_quoted(errors))
+                                       .c_str());
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << arguments;
+    EXPECT_EQ(read_text(errors), "fuzzygait: error: cannot write to standard output\n")
+        << arguments;
+  }
 }
 
 TEST(EvalCommand, PrintsTheTableAndWritesTheJson) {
