@@ -48,6 +48,25 @@ void append(std::string& line, double value, int decimals) {
   line += buffer;
 }
 
+// Why the value of the header()'s column k cannot be, or nullptr: a wrong unit (radians where
+// degrees belong) or a broken file, which would measure as nonsense.
+const char* out_of_range(std::size_t k, double value) {
+  constexpr std::size_t kFirstAngle = 3;     // pelvis_tilt, then the joints
+  constexpr std::size_t kFirstContact = 12;  // l_contact, r_contact
+  if (k >= kFirstAngle && k < kFirstContact) {
+    return std::abs(value) > 360.0 ? "is beyond a turn (angles are in degrees)" : nullptr;
+  }
+  if (k == kFirstContact || k == kFirstContact + 1) {
+    return value == 0.0 || value == 1.0 ? nullptr : "is neither 0 nor 1";
+  }
+  if (k > 0) {  // positions
+    return std::abs(value) > terrain::Terrain::kMaxCoordinate
+               ? "lies more than 1000 km from the origin (positions are in metres)"
+               : nullptr;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 void write_walk_csv(std::ostream& out, const gait::Motion& motion) {
@@ -102,6 +121,10 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
                                     (c < cells.size() ? cells[c] : std::string()) +
                                     "' is not a finite number");
       }
+      if (const char* wrong = out_of_range(k, *value)) {
+        throw fuzzy::ParseError(where, number,
+                                "column '" + columns[c] + "': " + cells[c] + " " + wrong);
+      }
       v.push_back(*value);
     }
     gait::Frame f;
@@ -114,7 +137,7 @@ gait::Motion read_walk_csv(std::istream& in, std::string_view source) {
       for (double* field : {&a.hip, &a.knee, &a.ankle, &a.toe})
         *field = rig::radians(v[k++]);
     }
-    f.contact = {v[k] >= 0.5, v[k + 1] >= 0.5};
+    f.contact = {v[k] == 1.0, v[k + 1] == 1.0};
     k += 2;
     for (rig::LegPoints& p : f.points) {
       for (rig::Point* q : point_fields(p)) {
@@ -206,6 +229,10 @@ terrain::Terrain read_terrain_csv(std::istream& in, std::string_view source) {
     if (!x || !y) throw fuzzy::ParseError(where, number, "x and y must be numbers");
     if (!std::isfinite(*x) || !std::isfinite(*y)) {
       throw fuzzy::ParseError(where, number, "x and y must be finite");
+    }
+    if (std::abs(*x) > terrain::Terrain::kMaxCoordinate ||
+        std::abs(*y) > terrain::Terrain::kMaxCoordinate) {
+      throw fuzzy::ParseError(where, number, "x and y must be within 1000 km of the origin");
     }
     if (!points.empty() && !(*x > points.back().x)) {
       throw fuzzy::ParseError(where, number, "x must increase along the profile");

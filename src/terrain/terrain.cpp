@@ -16,7 +16,7 @@ Terrain::Terrain(std::vector<Point> points) : points_(std::move(points)) {
 }
 
 Terrain Terrain::flat() {
-  return Terrain({{-1e6, 0.0}, {1e6, 0.0}});
+  return Terrain({{-kMaxCoordinate, 0.0}, {kMaxCoordinate, 0.0}});
 }
 
 Terrain Terrain::polyline(std::vector<Point> points) {
@@ -24,6 +24,10 @@ Terrain Terrain::polyline(std::vector<Point> points) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y)) {
       throw std::invalid_argument("terrain point " + std::to_string(i) + " is not finite");
+    }
+    if (std::abs(points[i].x) > kMaxCoordinate || std::abs(points[i].y) > kMaxCoordinate) {
+      throw std::invalid_argument("terrain point " + std::to_string(i) +
+                                  " lies more than 1000 km from the origin");
     }
     if (i > 0 && !(points[i].x > points[i - 1].x)) {
       throw std::invalid_argument("terrain point " + std::to_string(i) +

@@ -152,6 +152,36 @@ TEST(WalkCsv, ErrorsNameTheFileLineAndColumn) {
   std::string nan = broken;
   nan.replace(nan.find("bent"), 4, "nan");
   EXPECT_THAT(read_error(nan), HasSubstr("'nan' is not a finite number"));
+  // Numbers in the wrong unit or no state at all: each named by line and column.
+  std::string turns = broken;
+  turns.replace(turns.find("bent"), 4, "-400");
+  EXPECT_THAT(
+      read_error(turns),
+      HasSubstr("walk.csv:4: column 'l_knee': -400 is beyond a turn (angles are in degrees)"));
+  turns.replace(turns.find("-400"), 4, "-360");
+  EXPECT_EQ(read_error(turns), "");
+  std::string contact = rows[0] + "\n";
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    std::string row = rows[i];
+    if (i == 2) {
+      std::vector<std::string> cells;
+      std::istringstream split(row);
+      for (std::string cell; std::getline(split, cell, ',');)
+        cells.push_back(cell);
+      cells[13] = "0.5";  // r_contact
+      cells[37] = "1e7";  // r_tip_y
+      row.clear();
+      for (const std::string& cell : cells)
+        row += (row.empty() ? "" : ",") + cell;
+    }
+    contact += row + "\n";
+  }
+  EXPECT_THAT(read_error(contact),
+              HasSubstr("walk.csv:3: column 'r_contact': 0.5 is neither 0 nor 1"));
+  contact.replace(contact.find(",0.5,"), 5, ",1,");
+  EXPECT_THAT(
+      read_error(contact),
+      HasSubstr("walk.csv:3: column 'r_tip_y': 1e7 lies more than 1000 km from the origin"));
 
   EXPECT_THAT(read_error(header + "\n" + rows[1] + "\n"), HasSubstr("fewer than two frames"));
   // Two rows of the same time, rows out of order, a dropped frame: each named by its line.
@@ -193,6 +223,11 @@ TEST(TerrainCsv, RoundTripAndErrors) {
   EXPECT_THAT(error("x,y\n0,0\n1,inf\n2,0\n3,0\n"), HasSubstr("t.csv:3"));
   EXPECT_THAT(error("x,y\n0,0\n1,0\n0.5,0\n3,0\n"), HasSubstr("t.csv:4"));
   EXPECT_THAT(error("x,y\n0,0\n"), HasSubstr("at least two points"));
+  // Heights of 1e300 would make every contact figure nonsense: the ground ends at 1000 km.
+  EXPECT_THAT(error("x,y\n0,0\n1,1e300\n"),
+              HasSubstr("t.csv:3: x and y must be within 1000 km of the origin"));
+  EXPECT_THROW(terrain::Terrain::polyline({{0.0, 0.0}, {2e6, 0.0}}), std::invalid_argument);
+  EXPECT_NO_THROW(terrain::Terrain::polyline({{-1e6, -1e6}, {1e6, 1e6}}));
 }
 
 }  // namespace

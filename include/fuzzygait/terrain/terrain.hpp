@@ -14,11 +14,15 @@ using rig::Point;
 
 class Terrain {
  public:
+  // The farthest a ground point may lie from the origin in x or y, metres: the extent of flat()
+  // ground. Beyond it a coordinate is a wrong unit or a broken file, and heights of 1e300 make
+  // every contact figure nonsense.
+  static constexpr double kMaxCoordinate = 1e6;
   // Level ground at height 0.
   static Terrain flat();
   // Ground through the given points, sorted by x; constant beyond the ends. Throws
-  // std::invalid_argument when points are fewer than two, not finite, or x does not increase
-  // (vertical risers are two points with x a millimetre apart).
+  // std::invalid_argument when points are fewer than two, not finite, beyond kMaxCoordinate, or
+  // x does not increase (vertical risers are two points with x a millimetre apart).
   static Terrain polyline(std::vector<Point> points);
 
   double height(double x) const {
