@@ -29,6 +29,7 @@ void add_tune_command(CLI::App& app) {
     std::vector<double> stance = {tune.stance_min, tune.stance_max};
     std::vector<double> knee_peak = {tune.knee_peak_min, tune.knee_peak_max};
     std::vector<double> pelvis_range = {tune.pelvis_range_min, tune.pelvis_range_max};
+    double heel_bounce_mm = tune.heel_bounce_max * 1000.0;
     std::string name;         // of the written set; default: the starting set's
     std::string description;  // likewise
   };
@@ -68,6 +69,9 @@ void add_tune_command(CLI::App& app) {
                    "How many times people's RMS angular acceleration the thigh and knee may have "
                    "on the main walk before it costs (default: no limit)")
       ->check(CLI::PositiveNumber);
+  tune->add_option("--heel-bounce-max", o->heel_bounce_mm,
+                   "Highest a heel may rise after foot flat and drop back before heel-off, mm, "
+                   "before it costs (default: no limit)");
   tune->add_option("--minimum-inertia", t.minimum_inertia,
                    "Smallest inertia time constant the tuning may choose, s (default 0.02)");
   tune->add_option("--name", o->name, "Name written into the tuned set's manifest (a style)");
@@ -103,6 +107,7 @@ void add_tune_command(CLI::App& app) {
     options.knee_peak_max = o->knee_peak.at(1);
     options.pelvis_range_min = o->pelvis_range.at(0);
     options.pelvis_range_max = o->pelvis_range.at(1);
+    options.heel_bounce_max = o->heel_bounce_mm / 1000.0;
     options.recovery_seeds = learn::recovery_seeds(o->recovery);
     options.progress = [](int generation, double cost) {
       if (generation % 10 == 0)

@@ -213,6 +213,28 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
     }
   }
 
+  // Heel bounces: within one contact, the heel's rise between two frames on the ground.
+  for (int side = 0; side < 2; ++side) {
+    const auto s = static_cast<std::size_t>(side);
+    double rise = 0.0;
+    bool heel_was_down = false;  // in this contact
+    for (const Frame& f : m.frames) {
+      if (!f.contact[s]) {
+        heel_was_down = false;
+        continue;
+      }
+      const rig::Point& heel = f.points[s].heel;
+      const double gap = heel.y - terrain.height(heel.x);
+      if (gap < kOnGround) {
+        if (heel_was_down) r.max_heel_bounce = std::max(r.max_heel_bounce, rise);
+        heel_was_down = true;
+        rise = 0.0;
+      } else {
+        rise = std::max(rise, gap);
+      }
+    }
+  }
+
   // Cycles of the left leg, heel strike to heel strike; the first is skipped.
   const std::vector<std::size_t> left = heel_strikes(m, rig::Side::Left);
   const std::vector<std::size_t> right = heel_strikes(m, rig::Side::Right);
@@ -373,6 +395,7 @@ std::string to_text(const GaitReport& r) {
   row("max foot slip in contact", r.max_slip * 1000.0, "mm per frame");
   row("max penetration", r.max_penetration * 1000.0, "mm");
   row("min toe clearance, swing", r.min_toe_clearance * 1000.0, "mm");
+  row("max heel bounce in stance", r.max_heel_bounce * 1000.0, "mm");
   row("max velocity jump at switch", r.max_velocity_jump, "deg/s per frame");
   row("velocity change, 99th pct", r.typical_velocity_change, "deg/s per frame");
   for (std::size_t j = 0; j < 4; ++j) {
@@ -416,6 +439,7 @@ std::string to_json(const GaitReport& r) {
   j["max_slip_m_per_frame"] = r.max_slip;
   j["max_penetration_m"] = r.max_penetration;
   j["min_toe_clearance_m"] = r.min_toe_clearance;
+  j["max_heel_bounce_m"] = r.max_heel_bounce;
   j["max_velocity_jump_deg_per_s"] = r.max_velocity_jump;
   j["typical_velocity_change_deg_per_s"] = r.typical_velocity_change;
   for (std::size_t k = 0; k < 4; ++k) {

@@ -247,6 +247,7 @@ void validate(const TuneOptions& o) {
   within("word penalty bound", o.word_penalty_max, 0.0, 1e9);
   within("acceleration ratio bound", o.acceleration_ratio_max, 1e-9,
          std::numeric_limits<double>::infinity());
+  within("heel bounce bound", o.heel_bounce_max, 0.0, std::numeric_limits<double>::infinity());
   within("generations", o.generations, 1, 1e6);
   within("polish generations", o.polish_generations, 0, 1e6);
   within("digits", o.digits, 1, 17);
@@ -293,6 +294,7 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
       // A foot point near the ground that moves along it is a slip (the walk checker's rule).
       cost += 2000.0 * std::max(0.0, r.max_slip - 0.0005) +
               20000.0 * std::max(0.0, r.max_slip - options.slip_max) + 1000.0 * r.max_penetration;
+      cost += 20000.0 * std::max(0.0, r.max_heel_bounce - options.heel_bounce_max);
       if (c.reference) {
         double realism = 2.0 * (r.thigh_score->rmse + r.knee_score->rmse + r.ankle_score->rmse);
         realism += 10.0 * (2.0 - r.thigh_score->pearson - r.knee_score->pearson) +

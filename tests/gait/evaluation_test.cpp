@@ -168,6 +168,45 @@ TEST(StepError, OnlyAgainstACommandedStep) {
 }  // namespace
 // Each contact bound of the acceptance is judged on its own figure, at its edge, and named with
 // the figure and the bound; the step error only against a commanded step.
+// A heel that rises and drops back within one contact is a bounce; the real heel-off, which
+// stays up until the foot leaves, is not.
+TEST(HeelBounce, ARiseAndFallWithinOneContactIsMeasured) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::Walker walker = test::make_walker(ground);
+  const gait::Motion walked = gait::record(walker, 12.0, 120.0);
+  gait::Motion motion = walked;
+  const double before = gait::evaluate(motion, ground).max_heel_bounce;
+  // The first run of 16 left-contact frames with the heel down, from the third second on.
+  std::size_t first = 0;
+  std::size_t run = 0;
+  for (std::size_t i = 360; i < motion.frames.size() && run < 16; ++i) {
+    const gait::Frame& f = motion.frames[i];
+    run = f.contact[0] && f.points[0].heel.y < 0.002 ? run + 1 : 0;
+    first = i + 1 - run;
+  }
+  ASSERT_EQ(run, 16u);
+  // A 6 mm tent over its middle frames, on the ground again at both ends.
+  const double peak = 0.006 + before;
+  for (std::size_t k = 1; k < 15; ++k) {
+    const double up = peak * (1.0 - std::abs(static_cast<double>(k) - 7.5) / 7.5);
+    motion.frames[first + k].points[0].heel.y =
+        std::max(motion.frames[first + k].points[0].heel.y, up);
+  }
+  const gait::GaitReport r = gait::evaluate(motion, ground);
+  EXPECT_NEAR(r.max_heel_bounce, peak * (1.0 - 0.5 / 7.5), 1e-12);
+  EXPECT_NE(gait::to_text(r).find("max heel bounce in stance"), std::string::npos);
+  EXPECT_NE(gait::to_json(r).find("\"max_heel_bounce_m\""), std::string::npos);
+  // A heel raised 50 mm over the last frames of that contact, never down again before the foot
+  // leaves: a heel-off, not a bounce.
+  gait::Motion lifted = walked;
+  std::size_t end = first + 16;
+  while (lifted.frames[end].contact[0])
+    ++end;
+  for (std::size_t i = end - 8; i < end; ++i)
+    lifted.frames[i].points[0].heel.y += 0.05;
+  EXPECT_EQ(gait::evaluate(lifted, ground).max_heel_bounce, before);
+}
+
 TEST(ContactBounds, NamesEachMissedBoundWithItsFigure) {
   gait::GaitReport r;
   r.max_slip = 0.00099;

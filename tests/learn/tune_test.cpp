@@ -277,6 +277,7 @@ TEST(TuneOptions, OutOfRangeFieldsAreNamed) {
       {[](learn::TuneOptions& o, double v) { o.minimum_inertia = v; }, -1.0, "minimum inertia"},
       {[](learn::TuneOptions& o, double v) { o.acceleration_ratio_max = v; }, nan,
        "acceleration ratio"},
+      {[](learn::TuneOptions& o, double v) { o.heel_bounce_max = v; }, -0.001, "heel bounce"},
       {[](learn::TuneOptions& o, double v) { o.polish_generations = static_cast<int>(v); }, -5.0,
        "polish generations"},
   };

@@ -82,6 +82,9 @@ struct GaitReport {
   double max_slip = 0.0;                     // m per frame, foot points in contact
   double max_penetration = 0.0;              // m below the ground, any foot point
   double min_toe_clearance = 0.0;            // m, mid-swing (middle 60 % of swing)
+  // m: the highest a heel rose and came down again within one contact (a heel that lifts after
+  // foot flat and drops back before its real heel-off, a flutter people do not show); 0 if none.
+  double max_heel_bounce = 0.0;
   double max_velocity_jump = 0.0;  // deg/s, largest change of a joint's velocity at a phase switch
   double typical_velocity_change = 0.0;  // deg/s, 99th percentile of frame-to-frame changes
   // Angular acceleration and jerk of hip, knee, ankle and toe from the first measured cycle on.

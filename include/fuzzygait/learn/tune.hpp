@@ -69,6 +69,10 @@ struct TuneOptions {
   // reference's at the same cadence, above which a condition with enforce_bounds pays: how much
   // snappier than people the joints may move (their ease in and out). No limit by default.
   double acceleration_ratio_max = std::numeric_limits<double>::infinity();
+  // Heel bounce (gait::GaitReport::max_heel_bounce, m) above which every condition pays, 20 a
+  // millimetre: a heel that lifts after foot flat and drops back before heel-off. No limit by
+  // default.
+  double heel_bounce_max = std::numeric_limits<double>::infinity();
   double fps = 120.0;
   int generations = 200;
   // Then this many generations on the values rounded to `digits` significant digits, the ones
