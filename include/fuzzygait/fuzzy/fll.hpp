@@ -22,6 +22,13 @@ class ParseError : public std::runtime_error {
   int line_;
 };
 
+struct FllOptions {
+  // Refuse nan and infinities wherever the text gives a number (ranges, term parameters and
+  // heights, the default, rule weights, thresholds). fuzzylite reads them, and so does read_fll
+  // by default; a joint controller cannot use them (a NaN speed, a term that covers nothing).
+  bool finite_numbers = false;
+};
+
 // Parses FLL text. `source` names the text in error messages (usually the file path).
 // Stricter than fuzzylite where fuzzylite would guess: unknown keys, missing or extra term
 // parameters, unparsable rules and unsorted Discrete points are errors, never defaults.
@@ -29,12 +36,6 @@ class ParseError : public std::runtime_error {
 // time: a '\r' inside a line (only "\r\n" line endings), a Discrete x that is nan, a
 // variable named 'and' or 'or', and a defuzzifier resolution above
 // Defuzzifier::kMaxResolution (10^6).
-struct FllOptions {
-  // Refuse nan and infinities wherever the text gives a number (ranges, term parameters and
-  // heights, the default, rule weights, thresholds). fuzzylite reads them, and so does read_fll
-  // by default; a joint controller cannot use them (a NaN speed, a term that covers nothing).
-  bool finite_numbers = false;
-};
 Engine read_fll(std::string_view text, std::string_view source = "<fll>",
                 const FllOptions& options = {});
 Engine read_fll_file(const std::filesystem::path& path, const FllOptions& options = {});
