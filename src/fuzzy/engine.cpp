@@ -1,6 +1,7 @@
 #include "fuzzygait/fuzzy/engine.hpp"
 
 #include <array>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -257,6 +258,38 @@ EngineType Engine::type() const {
   if (all_weighted) return EngineType::InverseTsukamoto;
   if (all_defuzzified) return EngineType::Hybrid;
   return EngineType::Unknown;
+}
+
+std::vector<std::string> Engine::non_finite_numbers() const {
+  std::vector<std::string> out;
+  auto check = [&out](const std::string& where, double value) {
+    if (!std::isfinite(value)) out.push_back(where + " is " + format_scalar(value));
+  };
+  auto check_variable = [&](const char* kind, const std::string& variable_name, double minimum,
+                            double maximum, const std::vector<Term>& terms) {
+    const std::string variable = std::string(kind) + " '" + variable_name + "'";
+    check(variable + " range minimum", minimum);
+    check(variable + " range maximum", maximum);
+    for (const Term& t : terms) {
+      for (std::size_t i = 0; i < t.parameters.size(); ++i) {
+        check(variable + " term '" + t.name + "' parameter " + parameter_label(t, i),
+              t.parameters[i]);
+      }
+      check(variable + " term '" + t.name + "' height", t.height);
+    }
+  };
+  for (const InputVariable& v : inputs)
+    check_variable("input", v.name, v.minimum, v.maximum, v.terms);
+  for (const OutputVariable& v : outputs) {
+    check_variable("output", v.name, v.minimum, v.maximum, v.terms);
+    check("output '" + v.name + "' default", v.default_value);
+  }
+  for (const RuleBlock& b : rule_blocks) {
+    check("rule block '" + b.name + "' activation threshold", b.activation.threshold);
+    for (const Rule& r : b.rules)
+      check("the weight of rule '" + r.text() + "'", r.weight);
+  }
+  return out;
 }
 
 std::vector<std::string> Engine::problems() const {

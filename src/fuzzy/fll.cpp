@@ -175,13 +175,9 @@ class Reader {
     } catch (const std::invalid_argument& error) {
       fail(e.line, error.what());
     }
-    const TermShapeInfo& shape = shape_info(made.kind);
     for (std::size_t i = 0; i < made.parameters.size(); ++i) {
-      // Shapes of a fixed parameter count name each parameter; Discrete and Linear count them.
       finite(e, made.parameters[i],
-             "term '" + term_name + "' parameter " +
-                 (shape.parameter_count >= 0 ? "'" + std::string(shape.parameter_names[i]) + "'"
-                                             : std::to_string(i + 1)));
+             "term '" + term_name + "' parameter " + parameter_label(made, i));
     }
     finite(e, made.height, "term '" + term_name + "' height");
     return made;

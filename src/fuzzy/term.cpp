@@ -83,6 +83,13 @@ std::optional<TermKind> term_kind_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+std::string parameter_label(const Term& term, std::size_t i) {
+  const TermShapeInfo& shape = shape_info(term.kind);
+  return shape.parameter_count >= 0 && i < shape.parameter_names.size()
+             ? "'" + std::string(shape.parameter_names[i]) + "'"
+             : std::to_string(i + 1);
+}
+
 std::string format_scalar(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value < 0 ? "-inf" : "inf";

@@ -78,6 +78,11 @@ Controller::Controller(fuzzy::Engine engine, std::string source)
     throw std::invalid_argument(source_ + ": a joint controller has one output, found " +
                                 std::to_string(engine_.outputs.size()));
   }
+  // A NaN speed would stop the joint without a word, and a term over nothing never fires.
+  if (const std::vector<std::string> bad = engine_.non_finite_numbers(); !bad.empty()) {
+    throw std::invalid_argument(source_ + ": " + bad.front() +
+                                "; a joint controller's numbers must be finite");
+  }
   partition_ = fuzzy::as_partition(engine_);
   if (partition_) packed_ = fuzzy::PackedPartition::pack(*partition_);
   try {

@@ -201,7 +201,7 @@ std::string controller_fll(int delta_terms, int knee_terms, bool gaussian) {
   }
   text +=
       "OutputVariable: velocity\n  range: -500 500\n  lock-range: false\n"
-      "  aggregation: none\n  defuzzifier: WeightedAverage TakagiSugeno\n  default: nan\n";
+      "  aggregation: none\n  defuzzifier: WeightedAverage TakagiSugeno\n  default: 0\n";
   const int rules = delta_terms * std::max(knee_terms, 1);
   for (int r = 0; r < rules; ++r) {
     text +=
@@ -218,6 +218,31 @@ std::string controller_fll(int delta_terms, int knee_terms, bool gaussian) {
     }
   }
   return text;
+}
+
+// An engine built in code is held to the numbers a controller file is: each non-finite number
+// named by variable, term and parameter (Engine::non_finite_numbers), the first one refused.
+TEST(Controller, RefusesAnEngineWithANumberThatIsNotFinite) {
+  const fuzzy::Engine good = gait::ControllerSet::builtin("default").controllers.at(0).engine();
+  EXPECT_TRUE(good.non_finite_numbers().empty());
+  fuzzy::Engine bad = good;
+  bad.outputs.at(0).terms.at(1).parameters.at(0) = std::numeric_limits<double>::quiet_NaN();
+  bad.inputs.at(0).maximum = std::numeric_limits<double>::infinity();
+  bad.rule_blocks.at(0).rules.at(0).weight = -std::numeric_limits<double>::infinity();
+  const std::vector<std::string> found = bad.non_finite_numbers();
+  ASSERT_EQ(found.size(), 3u);
+  EXPECT_EQ(found[0], "input 'delta' range maximum is inf");
+  EXPECT_EQ(found[1], "output 'velocity' term '" + bad.outputs[0].terms[1].name +
+                          "' parameter 'value' is nan");
+  EXPECT_THAT(found[2], ::testing::StartsWith("the weight of rule 'if delta is"));
+  try {
+    gait::Controller controller(bad, "built/swing_hip");
+    ADD_FAILURE() << "built";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "built/swing_hip: input 'delta' range maximum is inf; a joint "
+              "controller's numbers must be finite");
+  }
 }
 
 // The forms the walker's packed path does not take (a partition wider than PackedPartition packs,

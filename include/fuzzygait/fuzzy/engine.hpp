@@ -170,6 +170,10 @@ struct Engine {
   EngineType type() const;
   // Problems that stop the engine from being evaluated, one sentence each; empty when ready.
   std::vector<std::string> problems() const;
+  // Its numbers that are nan or infinite (ranges, term parameters and heights, defaults, rule
+  // weights), one phrase each naming where. fuzzylite evaluates such engines; a joint controller
+  // refuses them (gait::Controller).
+  std::vector<std::string> non_finite_numbers() const;
   bool operator==(const Engine&) const = default;
 };
 

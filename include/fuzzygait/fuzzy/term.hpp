@@ -63,6 +63,10 @@ struct Term {
   bool operator==(const Term& other) const;  // NaN equals NaN
 };
 
+// How messages name parameter i of `term`: "'vertexB'" for shapes of a fixed parameter count,
+// its position ("4") for Discrete and Linear.
+std::string parameter_label(const Term& term, std::size_t i);
+
 // Builds a term from its FLL parameter text; throws std::invalid_argument with a message that
 // names the term and the offending parameter.
 Term make_term(std::string name, TermKind kind, std::string_view parameter_text);
