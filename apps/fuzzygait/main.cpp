@@ -20,8 +20,8 @@ int main(int argc, char** argv) {
     std::cerr << "fuzzygait: error: " << e.what() << "\n";
     status = 1;
   }
-  // What was printed must have arrived: a full disk or a closed pipe under `> file` or `| tool`
-  // would otherwise end in success with the report or the exported table cut short.
+  // What was printed must have arrived: a full disk under `> file` (or a closed pipe, where
+  // SIGPIPE is ignored) would otherwise end in success with the report or the table cut short.
   if (!std::cout.flush()) {
     std::cerr << "fuzzygait: error: cannot write to standard output\n";
     return status != 0 ? status : 1;

@@ -71,7 +71,8 @@ void add_tune_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   tune->add_option("--heel-bounce-max", o->heel_bounce_mm,
                    "Highest a heel may rise after foot flat and drop back before heel-off, mm, "
-                   "before it costs (default: no limit)");
+                   "before it costs (default: no limit)")
+      ->check(CLI::Range(0, 1000));
   tune->add_option("--minimum-inertia", t.minimum_inertia,
                    "Smallest inertia time constant the tuning may choose, s (default 0.02)");
   tune->add_option("--name", o->name, "Name written into the tuned set's manifest (a style)");

@@ -180,6 +180,13 @@ class Reader {
              "term '" + term_name + "' parameter " + parameter_label(made, i));
     }
     finite(e, made.height, "term '" + term_name + "' height");
+    if (made.kind == TermKind::Function) {
+      for (const FormulaInstruction& i : compile_formula(made.formula).code) {
+        if (i.kind == FormulaInstruction::Kind::Constant) {
+          finite(e, i.value, "a constant in the formula of term '" + term_name + "'");
+        }
+      }
+    }
     return made;
   }
 
@@ -192,6 +199,22 @@ class Reader {
       output(block);
     } else {
       rule_block(block);
+    }
+  }
+
+  // Under FllOptions::finite_numbers, a variable must give the numbers whose defaults are not
+  // finite (a range of -inf to inf, an output's default of nan): named at the variable's line.
+  template <class Variable>
+  void absent_numbers(const Entry& header, const char* kind, const Variable& v,
+                      bool no_default) const {
+    if (!options_.finite_numbers) return;
+    if (!std::isfinite(v.minimum)) {
+      fail(header.line, std::string(kind) + " variable '" + v.name +
+                            "' needs a 'range: minimum maximum' here (its numbers must be finite)");
+    }
+    if (no_default) {
+      fail(header.line, std::string(kind) + " variable '" + v.name +
+                            "' needs a 'default:' here (its numbers must be finite)");
     }
   }
 
@@ -225,6 +248,7 @@ class Reader {
         fail(e.line, "unknown key '" + e.key + "' in InputVariable '" + v.name + "'");
       }
     }
+    absent_numbers(block.front(), "input", v, false);
     engine_.inputs.push_back(std::move(v));
   }
 
@@ -250,6 +274,7 @@ class Reader {
         fail(e.line, "unknown key '" + e.key + "' in OutputVariable '" + v.name + "'");
       }
     }
+    absent_numbers(block.front(), "output", v, !std::isfinite(v.default_value));
     engine_.outputs.push_back(std::move(v));
   }
 

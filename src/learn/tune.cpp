@@ -352,6 +352,25 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
   return total;
 }
 
+namespace {
+
+// The cost of the set `make` builds from a candidate. A candidate that makes no controller set
+// (a value the search drove to nan or infinity, which gait::Controller refuses) costs more than
+// one whose every walk failed, rather than ending the tuning from a worker thread.
+double candidate_cost(const std::function<gait::ControllerSet()>& make,
+                      const TuneOptions& options) {
+  gait::ControllerSet set;
+  try {
+    set = make();
+  } catch (const std::invalid_argument&) {
+    return 1000.0 *
+           static_cast<double>(options.conditions.size() + options.recovery_seeds.size() + 1);
+  }
+  return walk_cost(set, options);
+}
+
+}  // namespace
+
 TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
   validate(options);
   const SetParameters parameters(start, options.minimum_inertia);
@@ -363,7 +382,9 @@ TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
   cma.progress = [&options](int generation, double best, const std::vector<double>&) {
     if (options.progress) options.progress(generation, best);
   };
-  auto cost = [&](const std::vector<double>& x) { return walk_cost(parameters.apply(x), options); };
+  auto cost = [&](const std::vector<double>& x) {
+    return candidate_cost([&] { return parameters.apply(x); }, options);
+  };
   const CmaesResult r = minimize(cost, parameters.values(), cma);
   TuneResult out;
   out.set = parameters.apply(r.best);
@@ -377,7 +398,7 @@ TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
     // The written values are rounded for the artist: polish the result where the cost sees
     // exactly those rounded values.
     auto rounded_cost = [&](const std::vector<double>& x) {
-      return walk_cost(parameters.rounded(x, options.digits), options);
+      return candidate_cost([&] { return parameters.rounded(x, options.digits); }, options);
     };
     CmaesOptions polish = cma;
     polish.sigma = 0.25 * options.sigma;

@@ -15,6 +15,7 @@ namespace {
 // The shortest text that reads back to the number: "1e-07" and "1e+300", where std::to_string
 // would print "0.000000" and three hundred digits.
 std::string number_text(double value) {
+  if (std::isnan(value)) return "nan";  // to_chars would give "-nan" for some
   char text[32];
   return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
 }

@@ -226,10 +226,17 @@ TEST(Fll, FiniteNumbersRefusesNanAndInfinityWhereverANumberIs) {
       {"neg Ramp 0 -1", "neg Discrete 0 0 1 nan", "bad.fll:17: term 'neg' parameter 4 must"},
       {"with 0.5", "with nan", "bad.fll:26: rule weight must be a finite number here"},
       {"Highest 2", "Threshold >= inf", "bad.fll:24: threshold must be a finite number"},
+      {"neg Ramp 0 -1", "neg Function 2 * nan",
+       "bad.fll:17: a constant in the formula of term 'neg' must be a finite number here"},
+      // Left out, a range is -inf to inf and an output's default nan: named at the variable.
+      {"  range: 0 1\n", "", "bad.fll:3: input variable 'in' needs a 'range: minimum maximum'"},
+      {"  default: nan\n", "", "bad.fll:9: output variable 'out' needs a 'default:'"},
   };
   for (const Case& c : cases) {
     std::string text = kSmall;
-    if (c.from != "default: nan") text.replace(text.find("default: nan"), 12, "default: 0");
+    if (c.from.find("default: nan") == std::string::npos) {
+      text.replace(text.find("default: nan"), 12, "default: 0");
+    }
     text.replace(text.find(c.from), c.from.size(), c.to);
     EXPECT_NO_THROW(read_fll(text, "bad.fll")) << c.to << ": fuzzylite reads it, and so do we";
     try {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -127,6 +128,16 @@ TEST(SetParameters, InertiaNeverGoesBelowItsMinimum) {
   EXPECT_EQ(p.apply(v).inertia, 0.02);
   v.back() = -0.01;  // values are magnitudes
   EXPECT_EQ(p.apply(v).inertia, 0.02);
+}
+
+// A value the search drove to nan makes no controller set (gait::Controller refuses it); the
+// tuner prices such a candidate above any that walks, instead of ending in a worker thread.
+TEST(SetParameters, ANanValueMakesNoSet) {
+  const learn::SetParameters p(test::default_set());
+  std::vector<double> v = p.values();
+  v[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(p.apply(v), std::invalid_argument);
+  EXPECT_THROW(p.rounded(v, 3), std::invalid_argument);
 }
 
 TEST(WordPenalty, ShippedSetsKeepTheirWordsAndABrokenWordCosts) {
