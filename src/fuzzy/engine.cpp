@@ -276,13 +276,8 @@ std::vector<std::string> Engine::non_finite_numbers() const {
               t.parameters[i]);
       }
       check(variable + " term '" + t.name + "' height", t.height);
-      if (t.kind == TermKind::Function) {
-        for (const FormulaInstruction& i : compile_formula(t.formula).code) {
-          if (i.kind == FormulaInstruction::Kind::Constant) {
-            check(variable + " term '" + t.name + "' formula constant", i.value);
-          }
-        }
-      }
+      for (const double constant : formula_constants(t))
+        check(variable + " term '" + t.name + "' formula constant", constant);
     }
   };
   for (const InputVariable& v : inputs)

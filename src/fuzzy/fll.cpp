@@ -180,13 +180,8 @@ class Reader {
              "term '" + term_name + "' parameter " + parameter_label(made, i));
     }
     finite(e, made.height, "term '" + term_name + "' height");
-    if (made.kind == TermKind::Function) {
-      for (const FormulaInstruction& i : compile_formula(made.formula).code) {
-        if (i.kind == FormulaInstruction::Kind::Constant) {
-          finite(e, i.value, "a constant in the formula of term '" + term_name + "'");
-        }
-      }
-    }
+    for (const double constant : formula_constants(made))
+      finite(e, constant, "a constant in the formula of term '" + term_name + "'");
     return made;
   }
 

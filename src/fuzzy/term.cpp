@@ -90,6 +90,15 @@ std::string parameter_label(const Term& term, std::size_t i) {
              : std::to_string(i + 1);
 }
 
+std::vector<double> formula_constants(const Term& term) {
+  std::vector<double> constants;
+  if (term.kind != TermKind::Function) return constants;
+  for (const FormulaInstruction& i : compile_formula(term.formula).code) {
+    if (i.kind == FormulaInstruction::Kind::Constant) constants.push_back(i.value);
+  }
+  return constants;
+}
+
 std::string format_scalar(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value < 0 ? "-inf" : "inf";

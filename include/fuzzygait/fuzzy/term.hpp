@@ -66,6 +66,8 @@ struct Term {
 // How messages name parameter i of `term`: "'vertexB'" for shapes of a fixed parameter count,
 // its position ("4") for Discrete and Linear.
 std::string parameter_label(const Term& term, std::size_t i);
+// The constants written in a Function term's formula, in order; none for other shapes.
+std::vector<double> formula_constants(const Term& term);
 
 // Builds a term from its FLL parameter text; throws std::invalid_argument with a message that
 // names the term and the offending parameter.
