@@ -1,8 +1,9 @@
-// `fuzzygait-bench gait`: character-steps per second of the walker on one core with a controller
-// set, and the same walk with the same controllers evaluated through fuzzylite in the loop
-// (WalkerOptions::controller_backend). Both walks must give the same motion before anything is
-// timed: the controllers' outputs agree within 1e-9 call by call, and the walks' heel strikes
-// (time and place), final pelvis and joint angles are identical.
+// `fuzzygait-bench gait`: character-steps per second on one core with a controller set, for a lone
+// walker and for a crowd stepped together (gait::Crowd), each against the same walk with the same
+// controllers evaluated through fuzzylite in the loop (WalkerOptions::controller_backend). The
+// walks must give the same motion before anything is timed: the controllers' outputs agree within
+// 1e-9 call by call, the walks' heel strikes (time and place), final pelvis and joint angles are
+// identical, and every character of a crowd walks to the bit as it does alone.
 #include <fl/Headers.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include "commands.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
 #include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/gait/crowd.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/rig/rig.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
@@ -33,6 +35,7 @@ struct Options {
   int repetitions = 5;
   double warm_up = 2.0;       // simulated seconds walked before timing
   double check_seconds = 20;  // simulated seconds of the motion comparison
+  int crowd = 1024;           // characters in the crowd (0: no crowd)
 };
 
 // A game advances its characters once per frame; the walker subdivides into time steps.
@@ -218,6 +221,142 @@ void check_motion(const gait::ControllerSet& set, const gait::WalkerOptions& opt
   }
 }
 
+// A crowd of the default character at phases spread over a stride: warm-ups from 3.0 to 4.1 s (a
+// gait cycle is about 1.1 s), stepped by the golden ratio so that neighbours differ.
+std::vector<gait::WalkerOptions> crowd_characters(const gait::WalkerOptions& options, int count) {
+  std::vector<gait::WalkerOptions> characters(static_cast<std::size_t>(count), options);
+  for (std::size_t i = 0; i < characters.size(); ++i) {
+    const double golden = 0.6180339887498949 * static_cast<double>(i);
+    characters[i].start.warm_up = 3.0 + 1.1 * (golden - std::floor(golden));
+  }
+  return characters;
+}
+
+// Walks a crowd and each of its characters alone side by side, frame by frame: throws
+// std::runtime_error unless every pose and every event is the same to the bit.
+void check_crowd(const gait::ControllerSet& set, const gait::WalkerOptions& options,
+                 const terrain::Terrain& ground, const Options& o) {
+  const std::vector<gait::WalkerOptions> characters =
+      crowd_characters(options, std::min(o.crowd, 64));
+  gait::Crowd crowd(set, ground, characters);
+  std::vector<gait::Walker> alone;
+  for (const gait::WalkerOptions& c : characters)
+    alone.emplace_back(set, c, ground);
+  long frames = 0;
+  long events = 0;
+  bool same = true;
+  for (double time = 0.0; time < o.check_seconds; time += kFrame, ++frames) {
+    crowd.advance(kFrame);
+    for (std::size_t i = 0; i < alone.size(); ++i) {
+      gait::Walker& lone = alone[i];
+      lone.advance(kFrame);
+      const rig::Pose a = crowd[i].pose();
+      const rig::Pose b = lone.pose();
+      same = same && a.pelvis.x == b.pelvis.x && a.pelvis.y == b.pelvis.y;
+      for (std::size_t leg = 0; leg < 2; ++leg) {
+        const rig::LegAngles& p = a.legs[leg];
+        const rig::LegAngles& q = b.legs[leg];
+        same = same && p.hip == q.hip && p.knee == q.knee && p.ankle == q.ankle && p.toe == q.toe;
+      }
+      const std::vector<gait::EventRecord>& e = crowd[i].events();
+      const std::vector<gait::EventRecord>& f = lone.events();
+      same = same && e.size() == f.size();
+      for (std::size_t k = 0; same && k < e.size(); ++k) {
+        same = e[k].time == f[k].time && e[k].event == f[k].event && e[k].where.x == f[k].where.x;
+      }
+      events += static_cast<long>(e.size());
+      crowd.character(i).clear_events();
+      lone.clear_events();
+    }
+  }
+  std::printf(
+      "crowd check, %.0f s walked by %zu characters stepped together against each alone: %s "
+      "(%ld frames, %ld contact events; controllers %s)\n",
+      o.check_seconds, alone.size(), same ? "identical to the bit" : "DIFFERENT", frames, events,
+      crowd.batched_controllers() ? "evaluated across characters" : "per character");
+  std::fflush(stdout);
+  if (!same) throw std::runtime_error("a crowd's character walks differently from a lone walker");
+}
+
+// Wall seconds for a crowd to walk `frames` frames, clearing the events every frame.
+double crowd_seconds_for(gait::Crowd& crowd, long frames) {
+  return wall_seconds([&] {
+    for (long f = 0; f < frames; ++f) {
+      crowd.advance(kFrame);
+      for (std::size_t i = 0; i < crowd.size(); ++i)
+        crowd.character(i).clear_events();
+    }
+  });
+}
+
+// The crowd: its characters checked against themselves alone, then walked with the set's
+// controllers and with fuzzylite's in turn. Each crowd is built once (a fuzzylite crowd's warm-up
+// alone takes seconds) and walks on from one repetition to the next, in its steady gait.
+void run_crowd_benchmark(const gait::ControllerSet& set, const gait::WalkerOptions& options,
+                         const gait::WalkerOptions& through_fuzzylite,
+                         const terrain::Terrain& ground, const Options& o) {
+  check_crowd(set, options, ground, o);
+  const std::vector<gait::WalkerOptions> characters = crowd_characters(options, o.crowd);
+  gait::Crowd ours(set, ground, characters);
+  gait::Crowd theirs(set, ground, crowd_characters(through_fuzzylite, o.crowd));
+  // The same characters as lone walkers, advanced one after another every frame.
+  std::vector<gait::Walker> in_turn;
+  for (const gait::WalkerOptions& c : characters)
+    in_turn.emplace_back(set, c, ground);
+  auto in_turn_seconds_for = [&](long frames) {
+    return wall_seconds([&] {
+      for (long f = 0; f < frames; ++f) {
+        for (gait::Walker& w : in_turn) {
+          w.advance(kFrame);
+          w.clear_events();
+        }
+      }
+    });
+  };
+  const double steps_in_frame =
+      steps_per_frame(options) * static_cast<double>(o.crowd);  // character-steps
+  auto frames_for_crowd = [&](gait::Crowd& crowd) {
+    return calibrate(1, o.min_seconds,
+                     [&](long frames) { return crowd_seconds_for(crowd, frames); });
+  };
+  const long our_frames = frames_for_crowd(ours);
+  const long their_frames = frames_for_crowd(theirs);
+  const long in_turn_frames = calibrate(1, o.min_seconds, in_turn_seconds_for);
+  std::vector<double> our_ns;
+  std::vector<double> their_ns;
+  std::vector<double> in_turn_ns;
+  auto time_crowd = [&](gait::Crowd& crowd, long frames, std::vector<double>& ns) {
+    const double seconds = crowd_seconds_for(crowd, frames);
+    ns.push_back(1e9 * seconds / (static_cast<double>(frames) * steps_in_frame));
+  };
+  for (int r = 0; r < o.repetitions; ++r) {
+    run_alternating(
+        r,
+        [&] {
+          time_crowd(ours, our_frames, our_ns);
+          in_turn_ns.push_back(1e9 * in_turn_seconds_for(in_turn_frames) /
+                               (static_cast<double>(in_turn_frames) * steps_in_frame));
+        },
+        [&] { time_crowd(theirs, their_frames, their_ns); });
+    std::printf(
+        "crowd run %d: fuzzygait %8.1f ns per character-step (%ld frames), the same characters "
+        "in turn %8.1f ns (%ld frames), fuzzylite %8.1f ns (%ld frames)\n",
+        r + 1, our_ns.back(), our_frames, in_turn_ns.back(), in_turn_frames, their_ns.back(),
+        their_frames);
+    std::fflush(stdout);
+  }
+  const double a = median(our_ns);
+  const double c = median(in_turn_ns);
+  const double b = median(their_ns);
+  std::printf(
+      "crowd of %d characters stepped together (gait::Crowd), one core:\n"
+      "  fuzzygait %8.1f ns per character-step, %6.3f M character-steps per second "
+      "(%.0f characters in real time)\n"
+      "  in turn   %8.1f ns per character-step, %6.3f M (the same walkers advanced one by one)\n"
+      "  fuzzylite %8.1f ns per character-step, %6.3f M; speedup %.2f\n",
+      o.crowd, a, 1e3 / a, options.time_step * 1e9 / a, c, 1e3 / c, b, 1e3 / b, b / a);
+}
+
 void run_gait_benchmark(const Options& o) {
   const gait::ControllerSet set = o.controllers.empty() ? gait::ControllerSet::builtin(o.style)
                                                         : gait::ControllerSet::load(o.controllers);
@@ -266,6 +405,8 @@ void run_gait_benchmark(const Options& o) {
     std::printf("%-10s %8.1f ns per step, %6.3f M steps per second, real-time factor %.0f\n", label,
                 ns, 1e3 / ns, options.time_step * 1e9 / ns);
   }
+  if (o.crowd > 0) run_crowd_benchmark(set, options, through_fuzzylite, ground, o);
+  // The lone walker's figures: a character stepped on its own, as a game with a few calls it.
   std::printf("character-steps per second: %.0f\n", 1e9 / ours);
   std::printf("speedup vs fuzzylite: %.2f\n", theirs / ours);
 }
@@ -283,6 +424,10 @@ void add_gait_command(CLI::App& app) {
                      "Wall seconds each side walks per repetition, at least");
   gait->add_option("--warm-up", options->warm_up, "Simulated seconds walked before timing")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  gait->add_option("--crowd", options->crowd,
+                   "Characters in the crowd walked after the lone walker (0: no crowd)")
+      ->check(CLI::Range(0, 100000))
       ->capture_default_str();
   gait->add_option("--check-time", options->check_seconds,
                    "Simulated seconds of the motion comparison with fuzzylite in the loop")

@@ -28,19 +28,13 @@ struct SinCos {
 inline constexpr double kSinCosExactBelow = 1.0e6;
 
 // sin and cos of x[i] for i < N. Branch-free in the lanes, so a compiler can vectorise the
-// loop; any |x| beyond kSinCosExactBelow (or infinite) sends the whole call to libm.
+// loop; a lane with |x| beyond kSinCosExactBelow (or infinite) is then given libm's answer, so
+// each lane's bits do not depend on its neighbours (a crowd's batch equals a lone walker's call).
 template <std::size_t N>
 inline void sin_cos(const double (&x)[N], double (&sin)[N], double (&cos)[N]) {
   bool in_range = true;
   for (std::size_t i = 0; i < N; ++i)
     in_range = in_range && !(std::abs(x[i]) >= kSinCosExactBelow);  // NaN propagates below
-  if (!in_range) {
-    for (std::size_t i = 0; i < N; ++i) {
-      sin[i] = std::sin(x[i]);
-      cos[i] = std::cos(x[i]);
-    }
-    return;
-  }
   constexpr double two_over_pi = 6.36619772367581382433e-01;
   constexpr double pi_over_2_high = 1.57079632673412561417e+00;  // first 33 bits
   constexpr double pi_over_2_low = 6.07710050650619224932e-11;   // pi/2 - pi_over_2_high
@@ -81,7 +75,18 @@ inline void sin_cos(const double (&x)[N], double (&sin)[N], double (&cos)[N]) {
     sin[i] = std::abs(x[i]) < 0x1p-27 ? x[i] : std::bit_cast<double>(sin_bits);
     cos[i] = std::bit_cast<double>(cos_bits);
   }
+  if (in_range) return;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (std::abs(x[i]) >= kSinCosExactBelow) {
+      sin[i] = std::sin(x[i]);
+      cos[i] = std::cos(x[i]);
+    }
+  }
 }
+
+// sin and cos of x[i] for i < n, lane for lane the bits of sin_cos above, in the widest vectors
+// the machine has (AVX-512, AVX2 or SSE2, chosen when the library loads): a crowd's legs at once.
+void sin_cos(const double* x, double* sin, double* cos, std::size_t n);
 
 inline SinCos sin_cos(double x) {
   const double in[1] = {x};

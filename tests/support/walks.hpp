@@ -1,6 +1,10 @@
-// Walkers for the gait tests: the built-in default controller set, loaded once, and a walker of
-// a given step length and stature on the given ground.
+// Walkers for the gait tests: the built-in default controller set, loaded once, a walker of a
+// given step length and stature on the given ground, and two walker states compared to the bit.
 #pragma once
+
+#include <bit>
+#include <cstdint>
+#include <string>
 
 #include "fuzzygait/gait/controllers.hpp"
 #include "fuzzygait/gait/walker.hpp"
@@ -23,6 +27,46 @@ inline gait::Walker make_walker(const terrain::Terrain& ground, double step = 0.
   o.step_length = step;
   o.start = start;
   return gait::Walker(set, o, ground);
+}
+
+// The first field in which two walker states differ, bit for bit ("" when they are the same).
+inline std::string state_difference(const gait::WalkerState& a, const gait::WalkerState& b) {
+  auto differ = [](double x, double y) {
+    return std::bit_cast<std::uint64_t>(x) != std::bit_cast<std::uint64_t>(y);
+  };
+  if (differ(a.time, b.time)) return "time";
+  if (differ(a.pelvis.x, b.pelvis.x) || differ(a.pelvis.y, b.pelvis.y)) return "pelvis";
+  if (differ(a.pelvis_tilt, b.pelvis_tilt)) return "pelvis tilt";
+  if (a.lead != b.lead) return "lead";
+  if (differ(a.fall_velocity, b.fall_velocity)) return "fall velocity";
+  if (a.heel_strikes != b.heel_strikes) return "heel strikes";
+  for (std::size_t k = 0; k < 2; ++k) {
+    const gait::LegState& l = a.legs[k];
+    const gait::LegState& m = b.legs[k];
+    const std::string leg = k == 0 ? "left " : "right ";
+    if (l.phase != m.phase) return leg + "phase";
+    const std::pair<const char*, std::pair<double, double>> fields[] = {
+        {"hip", {l.angles.hip, m.angles.hip}},
+        {"knee", {l.angles.knee, m.angles.knee}},
+        {"ankle", {l.angles.ankle, m.angles.ankle}},
+        {"toe", {l.angles.toe, m.angles.toe}},
+        {"hip velocity", {l.velocity.hip, m.velocity.hip}},
+        {"knee velocity", {l.velocity.knee, m.velocity.knee}},
+        {"ankle velocity", {l.velocity.ankle, m.velocity.ankle}},
+        {"toe velocity", {l.velocity.toe, m.velocity.toe}},
+        {"anchor x", {l.anchor.x, m.anchor.x}},
+        {"anchor y", {l.anchor.y, m.anchor.y}},
+        {"sweep start", {l.sweep_start, m.sweep_start}},
+        {"sweep end", {l.sweep_end, m.sweep_end}},
+        {"target", {l.target_x, m.target_x}},
+        {"swing start", {l.swing_start, m.swing_start}},
+        {"strike", {l.strike_x, m.strike_x}},
+        {"delta", {l.delta, m.delta}}};
+    for (const auto& [name, values] : fields) {
+      if (differ(values.first, values.second)) return leg + name;
+    }
+  }
+  return "";
 }
 
 }  // namespace fuzzygait::test

@@ -142,9 +142,14 @@ class PackedPartition {
     }
     return default_value_;
   }
+  // out[i] = evaluate(x0[i], x1[i]) for i < n, bit for bit, in vectors across the lanes (AVX2
+  // when the machine has it, chosen once): a crowd's characters through one controller at once.
+  // x1 is not read for a one-input controller (it may then be null).
+  void evaluate(const double* x0, const double* x1, double* out, std::size_t n) const;
 
  private:
   enum class Shape : std::uint8_t { OneInput, Product, Minimum };
+  friend struct PackedLanes;  // the vector kernel of the batch evaluate()
 
   // One straight path per shape (evaluate_partition is inlined with the constants).
   double evaluate_as(bool two_inputs, std::size_t row_stride, Conjunction conjunction, double x0,

@@ -142,7 +142,27 @@ class Walker {
   static double max_step_length(const rig::Segments& segments);
 
  private:
+  friend class Crowd;  // runs the stages of step() for many characters at once
+
+  // What a time step hands from stage to stage.
+  struct StepData {
+    std::array<MetricValues, 2> metrics;
+    std::array<std::array<double, 4>, 2> commands;  // [leg][joint]: the controllers' outputs
+    std::array<rig::LegAngles, 2> previous;         // joint angles before the step
+    std::array<rig::LegAngles, 2> commanded;        // and as the controllers turned them
+  };
+  // advance(dt)'s equal sub-steps, none longer than time_step (throws for a bad dt).
+  struct SubSteps {
+    int count;
+    double length;
+  };
+  static SubSteps sub_steps(double dt, double time_step);
+  // One time step, in stages: measure() the metrics, command() the controllers, integrate() the
+  // joint velocities (and the carrying foot's rules), finish_step() the chain and the contacts.
   void step(double h);
+  void measure(StepData& d);
+  void integrate(double h, StepData& d);
+  void finish_step(double h, StepData& d);
   void start(const StartPose& start_pose);
   void warm_up(double seconds);
   void record(rig::Side side, Event event, rig::Point where);
@@ -174,15 +194,21 @@ class Walker {
   double follow_ = 0.0;       // share of the way a joint's velocity goes to its command in h
   double heel_offset_ = 0.0;
   WalkerState state_;
-  std::array<fuzzy::Workspace, kSlotCount> workspaces_;
+  // One per slot, on the heap: the fast path never touches them, and kept in the walker they
+  // made it 3.8 KB, which a crowd's characters stream through the caches every frame.
+  std::vector<fuzzy::Workspace> workspaces_;
   std::function<double(int, const MetricValues&)> controller_backend_;
   // Each leg's segment orientations when their sines and cosines were last computed: a time
   // step places a leg several times, mostly with unchanged angles (see leg_points()).
   struct TrigCache {
     rig::LegOrientation orientation;  // zero, as rig::LegTrig's defaults
     rig::LegTrig trig;
-    void update(const rig::LegOrientation& o);  // all four, when any orientation changed
+    // All four when the thigh, shank or foot turned; only the toes' when they alone did.
+    void update(const rig::LegOrientation& o);
   };
+  rig::LegOrientation orientation(int leg) const {
+    return rig::orientation(state_.pelvis_tilt, state_.legs[static_cast<std::size_t>(leg)].angles);
+  }
   std::array<TrigCache, 2> trig_{};
   // Each leg's points as the last time step left them: the next one starts from them.
   std::array<rig::LegPoints, 2> end_points_{};

@@ -1,0 +1,66 @@
+// Many characters walking with one controller set on one terrain, stepped together: each stage of
+// a time step runs for a block of characters before the next, so each controller is evaluated for
+// all of the block's legs it drives at once and the legs' sines and cosines in one batch, in the
+// widest vectors the machine has. Every character walks bit for bit as a lone Walker with its
+// options would: the crowd does the same arithmetic, only in a different order of characters.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "fuzzygait/gait/walker.hpp"
+
+namespace fuzzygait::gait {
+
+class Crowd {
+ public:
+  // One character per element of `characters` (body, step length, start pose, ...). The
+  // controller set and terrain must outlive the crowd. Throws std::invalid_argument as Walker's
+  // constructor does, naming the character, or when the characters' time steps differ (they
+  // step together).
+  Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
+        std::span<const WalkerOptions> characters);
+
+  std::size_t size() const { return walkers_.size(); }
+  // Advances every character by dt, in the sub-steps Walker::advance() takes. No allocation, no
+  // file access. Throws std::invalid_argument for a dt that is NaN, negative or over an hour.
+  void advance(double dt);
+
+  // A character: its pose, state and events, and set_step_length(). Advancing one alone is
+  // allowed (it is a Walker); the crowd then goes on from where that character is.
+  const Walker& operator[](std::size_t i) const { return walkers_[i]; }
+  Walker& character(std::size_t i) { return walkers_[i]; }
+
+  // Whether the controllers are evaluated across characters (every controller of the set on the
+  // fast path and no character with a controller back end); otherwise each character evaluates
+  // its own, as a Walker does.
+  bool batched_controllers() const { return batched_; }
+
+  // Characters stepped together: their data stays in the core's caches through a frame's stages.
+  static constexpr std::size_t kBlock = 32;
+
+ private:
+  void step(std::size_t first, std::size_t count, double h);
+  void command(std::size_t first, std::size_t count);
+  void place_legs(std::size_t first, std::size_t count);
+
+  std::vector<Walker> walkers_;
+  std::vector<Walker::StepData> steps_;  // a block's
+  bool batched_ = false;
+  double time_step_ = 0.0;
+  // Each slot's controller, the metrics it reads, and its lanes: room for both legs of a block.
+  std::array<const fuzzy::PackedPartition*, kSlotCount> packed_{};
+  std::array<std::array<std::size_t, 2>, kSlotCount> input_of_slot_{};
+  std::vector<double> input0_;
+  std::vector<double> input1_;
+  std::vector<double> output_;
+  std::vector<double*> command_of_;  // where each lane's output goes
+  // A block's leg orientations (four a leg) and their sines and cosines.
+  std::vector<double> angles_;
+  std::vector<double> sines_;
+  std::vector<double> cosines_;
+};
+
+}  // namespace fuzzygait::gait

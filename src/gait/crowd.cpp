@@ -1,0 +1,134 @@
+#include "fuzzygait/gait/crowd.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "../rig/trigonometry.hpp"
+
+namespace fuzzygait::gait {
+namespace {
+constexpr std::size_t kLanesPerSlot = 2 * Crowd::kBlock;
+}
+
+Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
+             std::span<const WalkerOptions> characters) {
+  walkers_.reserve(characters.size());
+  for (std::size_t i = 0; i < characters.size(); ++i) {
+    if (i > 0 && !(characters[i].time_step == characters[0].time_step)) {
+      throw std::invalid_argument("character " + std::to_string(i) +
+                                  ": a crowd's characters step together, so their time steps "
+                                  "must be equal");
+    }
+    try {
+      walkers_.emplace_back(controllers, characters[i], terrain);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("character " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  time_step_ = characters.empty() ? WalkerOptions{}.time_step : characters[0].time_step;
+  steps_.resize(kBlock);
+  batched_ = controllers.controllers.size() == static_cast<std::size_t>(kSlotCount);
+  for (const Controller& c : controllers.controllers)
+    batched_ = batched_ && c.packed() != nullptr;
+  for (const WalkerOptions& o : characters)
+    batched_ = batched_ && !o.controller_backend;
+  if (batched_) {
+    const std::size_t lanes = kLanesPerSlot * static_cast<std::size_t>(kSlotCount);
+    input0_.resize(lanes);
+    input1_.resize(lanes);
+    output_.resize(lanes);
+    command_of_.resize(lanes);
+    for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
+      const Controller& c = controllers.controllers[s];
+      packed_[s] = c.packed();
+      input_of_slot_[s][0] = static_cast<std::size_t>(c.input(0));
+      // A one-input controller does not read its second input.
+      input_of_slot_[s][1] = static_cast<std::size_t>(c.input(c.input_count() - 1));
+    }
+  }
+  angles_.resize(8 * kBlock);
+  sines_.resize(angles_.size());
+  cosines_.resize(angles_.size());
+}
+
+void Crowd::advance(double dt) {
+  const Walker::SubSteps s = Walker::sub_steps(dt, time_step_);
+  for (std::size_t first = 0; first < walkers_.size(); first += kBlock) {
+    const std::size_t count = std::min(kBlock, walkers_.size() - first);
+    for (int i = 0; i < s.count; ++i)
+      step(first, count, s.length);
+  }
+}
+
+void Crowd::step(std::size_t first, std::size_t count, double h) {
+  for (std::size_t i = 0; i < count; ++i)
+    walkers_[first + i].measure(steps_[i]);
+  command(first, count);
+  for (std::size_t i = 0; i < count; ++i)
+    walkers_[first + i].integrate(h, steps_[i]);
+  place_legs(first, count);
+  for (std::size_t i = 0; i < count; ++i)
+    walkers_[first + i].finish_step(h, steps_[i]);
+}
+
+// Each controller for every leg of the block it drives this step at once: the legs' metrics
+// gathered slot by slot, evaluated in vectors, and the outputs put back where each leg's command
+// goes.
+void Crowd::command(std::size_t first, std::size_t count) {
+  if (!batched_) {
+    for (std::size_t i = 0; i < count; ++i)
+      walkers_[first + i].command(steps_[i].metrics, steps_[i].commands);
+    return;
+  }
+  std::size_t used[kSlotCount] = {};
+  for (std::size_t i = 0; i < count; ++i) {
+    Walker::StepData& d = steps_[i];
+    const WalkerState& state = walkers_[first + i].state_;
+    for (std::size_t leg = 0; leg < 2; ++leg) {
+      const std::size_t phase_slots = state.legs[leg].phase == Phase::Swing ? 0 : 4;
+      const MetricValues& m = d.metrics[leg];
+      for (std::size_t joint = 0; joint < 4; ++joint) {
+        const std::size_t s = phase_slots + joint;
+        const std::size_t lane = s * kLanesPerSlot + used[s]++;
+        input0_[lane] = m[input_of_slot_[s][0]];
+        input1_[lane] = m[input_of_slot_[s][1]];
+        command_of_[lane] = &d.commands[leg][joint];
+      }
+    }
+  }
+  for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
+    const std::size_t lane = s * kLanesPerSlot;
+    packed_[s]->evaluate(&input0_[lane], &input1_[lane], &output_[lane], used[s]);
+    for (std::size_t k = lane; k < lane + used[s]; ++k)
+      *command_of_[k] = output_[k];
+  }
+}
+
+// Every leg's segment sines and cosines in one batch, for the orientations the legs are placed
+// with next (finish_step() finds them in its cache).
+void Crowd::place_legs(std::size_t first, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int leg = 0; leg < 2; ++leg) {
+      const rig::LegOrientation o = walkers_[first + i].orientation(leg);
+      double* a = &angles_[8 * i + 4 * static_cast<std::size_t>(leg)];
+      a[0] = o.thigh;
+      a[1] = o.shank;
+      a[2] = o.foot;
+      a[3] = o.toes;
+    }
+  }
+  rig::detail::sin_cos(angles_.data(), sines_.data(), cosines_.data(), 8 * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t leg = 0; leg < 2; ++leg) {
+      const std::size_t at = 8 * i + 4 * leg;
+      Walker::TrigCache& cache = walkers_[first + i].trig_[leg];
+      cache.orientation = {angles_[at], angles_[at + 1], angles_[at + 2], angles_[at + 3]};
+      cache.trig = {sines_[at],     cosines_[at],     sines_[at + 1], cosines_[at + 1],
+                    sines_[at + 2], cosines_[at + 2], sines_[at + 3], cosines_[at + 3]};
+    }
+  }
+}
+
+}  // namespace fuzzygait::gait

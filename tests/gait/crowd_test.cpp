@@ -1,0 +1,165 @@
+// A crowd steps its characters together (controllers across characters, the legs' trigonometry
+// in one batch); each character must walk to the bit as it would alone, through every kind of
+// step: double support, awkward starts, slopes and a kerb, a step length changed mid-walk.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/gait/crowd.hpp"
+#include "support/allocation_counter.hpp"
+#include "support/walks.hpp"
+
+using namespace fuzzygait;
+
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// Everything a game reads of a character: state, pose points and events, to the bit.
+void expect_same_walk(const gait::Walker& crowd, const gait::Walker& alone,
+                      const std::string& who) {
+  ASSERT_EQ(fuzzygait::test::state_difference(crowd.state(), alone.state()), "")
+      << who << " at " << alone.time() << " s";
+  const rig::LegPoints p = crowd.points(rig::Side::Right);
+  const rig::LegPoints q = alone.points(rig::Side::Right);
+  ASSERT_TRUE(same_bits(p.tip.x, q.tip.x) && same_bits(p.tip.y, q.tip.y)) << who;
+  ASSERT_EQ(crowd.events().size(), alone.events().size()) << who;
+  for (std::size_t e = 0; e < crowd.events().size(); ++e) {
+    const gait::EventRecord& a = crowd.events()[e];
+    const gait::EventRecord& b = alone.events()[e];
+    ASSERT_TRUE(a.event == b.event && a.side == b.side && same_bits(a.time, b.time) &&
+                same_bits(a.where.x, b.where.x) && same_bits(a.where.y, b.where.y))
+        << who << " event " << e;
+  }
+}
+
+// Forty characters (more than a block, so two blocks, the second partly filled): statures from
+// 1.50 to 2.00 m, steps across each one's range, phases spread by their warm-ups, every fifth
+// from a random awkward pose.
+std::vector<gait::WalkerOptions> mixed_characters(const gait::ControllerSet& set) {
+  std::vector<gait::WalkerOptions> characters(40);
+  for (std::size_t i = 0; i < characters.size(); ++i) {
+    gait::WalkerOptions& o = characters[i];
+    const double a = std::fmod(0.6180339887 * static_cast<double>(i), 1.0);
+    const double b = std::fmod(0.7548776662 * static_cast<double>(i), 1.0);
+    o.segments = rig::segments_from_stature(1.5 + 0.5 * a);
+    const double shortest = gait::Walker::min_step_length(set, o.segments);
+    const double longest = gait::Walker::max_step_length(o.segments);
+    o.step_length = shortest + (longest - shortest) * (0.1 + 0.8 * b);
+    o.start.warm_up = 3.0 + 1.1 * b;
+    if (i % 5 == 2) {
+      o.start.random = true;
+      o.start.seed = i;
+    }
+  }
+  return characters;
+}
+
+void walk_crowd_and_alone(const gait::ControllerSet& set, const terrain::Terrain& ground,
+                          const std::vector<gait::WalkerOptions>& characters, bool batched) {
+  gait::Crowd crowd(set, ground, characters);
+  ASSERT_EQ(crowd.size(), characters.size());
+  EXPECT_EQ(crowd.batched_controllers(), batched);
+  std::vector<gait::Walker> alone;
+  for (const gait::WalkerOptions& c : characters)
+    alone.emplace_back(set, c, ground);
+  for (int frame = 0; frame < 480; ++frame) {
+    // Frames of 1/60 s, and now and then a longer one (more sub-steps) and a zero one.
+    const double dt = frame % 97 == 5 ? 0.05 : (frame % 131 == 7 ? 0.0 : 1.0 / 60.0);
+    if (frame == 200) {
+      for (std::size_t i = 0; i < characters.size(); i += 3) {
+        const double step = 0.5 * (crowd[i].step_length() +
+                                   gait::Walker::min_step_length(set, crowd[i].segments()));
+        crowd.character(i).set_step_length(step);
+        alone[i].set_step_length(step);
+      }
+    }
+    crowd.advance(dt);
+    for (std::size_t i = 0; i < alone.size(); ++i) {
+      alone[i].advance(dt);
+      expect_same_walk(crowd[i], alone[i], set.name + " character " + std::to_string(i));
+      if (::testing::Test::HasFatalFailure()) return;
+      crowd.character(i).clear_events();
+      alone[i].clear_events();
+    }
+  }
+}
+
+TEST(Crowd, EveryCharacterWalksAsItWouldAlone) {
+  const terrain::Terrain ground = terrain::Terrain::polyline(
+      {{-10.0, 0.0}, {2.0, 0.0}, {4.0, 0.2}, {6.0, 0.2}, {6.001, 0.1}, {30.0, 0.1}});
+  for (const std::string& name : gait::ControllerSet::builtin_names()) {
+    const gait::ControllerSet set = gait::ControllerSet::builtin(name);
+    walk_crowd_and_alone(set, ground, mixed_characters(set), true);
+    if (HasFatalFailure()) return;
+  }
+}
+
+// With a controller back end (here the general fuzzy path through the set's own controllers)
+// each character evaluates its own controllers, and still walks as alone.
+TEST(Crowd, CharactersWithAControllerBackEndWalkAsAlone) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  std::vector<gait::WalkerOptions> characters = mixed_characters(set);
+  characters.resize(12);
+  characters[4].controller_backend = [&set](int slot, const gait::MetricValues& metrics) {
+    fuzzy::Workspace none;
+    return set.controllers[static_cast<std::size_t>(slot)].evaluate(metrics, none);
+  };
+  walk_crowd_and_alone(set, ground, characters, false);
+}
+
+TEST(Crowd, AdvancingAllocatesNothing) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  gait::Crowd crowd(set, ground, mixed_characters(set));
+  crowd.advance(1.0);
+  const long before = fuzzygait::testing::allocation_count();
+  for (int i = 0; i < 120; ++i) {
+    crowd.advance(1.0 / 60.0);
+    for (std::size_t c = 0; c < crowd.size(); ++c)
+      crowd.character(c).clear_events();
+  }
+  EXPECT_EQ(fuzzygait::testing::allocation_count(), before);
+}
+
+TEST(Crowd, BadInputGetsClearErrors) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  std::vector<gait::WalkerOptions> characters(3);
+  characters[2].step_length = 5.0;
+  try {
+    gait::Crowd crowd(set, ground, characters);
+    FAIL() << "a step of 5 m was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("character 2: step length must be between"),
+              std::string::npos)
+        << e.what();
+  }
+  characters[2] = gait::WalkerOptions{};
+  characters[1].time_step = 1.0 / 120.0;
+  try {
+    gait::Crowd crowd(set, ground, characters);
+    FAIL() << "different time steps were accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("character 1: a crowd's characters step together"),
+              std::string::npos)
+        << e.what();
+  }
+  characters[1] = gait::WalkerOptions{};
+  gait::Crowd crowd(set, ground, characters);
+  EXPECT_THROW(crowd.advance(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+  EXPECT_THROW(crowd.advance(-1.0), std::invalid_argument);
+  EXPECT_THROW(crowd.character(0).set_step_length(0.1), std::invalid_argument);
+  gait::Crowd empty(set, ground, {});
+  EXPECT_EQ(empty.size(), 0u);
+  EXPECT_NO_THROW(empty.advance(1.0));
+}
+
+}  // namespace
