@@ -182,6 +182,10 @@ std::optional<PackedPartition> PackedPartition::pack(const PartitionController<d
   for (std::size_t i = 0; i < inputs; ++i) {
     const std::vector<double>& knots = c.knots[i];
     if (knots.size() < 2 || knots.size() > kMaxKnots) return std::nullopt;
+    // Increasing, as as_partition makes them: the batch form counts the knots below an input.
+    for (std::size_t k = 1; k < knots.size(); ++k) {
+      if (!(knots[k - 1] < knots[k])) return std::nullopt;
+    }
     std::copy(knots.begin(), knots.end(), p.knots_[i].begin());
     p.counts_[i] = knots.size();
   }
@@ -278,8 +282,9 @@ using Mask = PackedLanes::Mask;
   weights = fires ? weights + degree : weights;
 }
 
+// nan_min: a NaN degree (finite knots more than the largest double apart) yields to the other.
 [[gnu::target("avx2"), gnu::always_inline]] inline Real lane_minimum(Real a, Real b) {
-  return a < b ? a : b;  // nan_min without NaN (NaN lanes give the default)
+  return a != a ? b : (b != b ? a : (a < b ? a : b));
 }
 
 }  // namespace
@@ -333,13 +338,17 @@ void PackedLanes::avx2(const PackedPartition& p, const double* x0, const double*
   scalar(p, x0 + whole, x1 != nullptr ? x1 + whole : nullptr, out + whole, n - whole);
 }
 
-void PackedPartition::evaluate(const double* x0, const double* x1, double* out,
-                               std::size_t n) const {
+bool PackedPartition::batch_in_vectors() {
   static const bool has_avx2 = [] {
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx2") != 0;
   }();
-  if (has_avx2) {
+  return has_avx2;
+}
+
+void PackedPartition::evaluate(const double* x0, const double* x1, double* out,
+                               std::size_t n) const {
+  if (batch_in_vectors()) {
     PackedLanes::avx2(*this, x0, x1, out, n);
   } else {
     PackedLanes::scalar(*this, x0, x1, out, n);
@@ -347,6 +356,10 @@ void PackedPartition::evaluate(const double* x0, const double* x1, double* out,
 }
 
 #else
+
+bool PackedPartition::batch_in_vectors() {
+  return false;
+}
 
 void PackedPartition::evaluate(const double* x0, const double* x1, double* out,
                                std::size_t n) const {

@@ -62,6 +62,11 @@ void Crowd::advance(double dt) {
   }
 }
 
+void Crowd::clear_events() {
+  for (Walker& w : walkers_)
+    w.clear_events();
+}
+
 void Crowd::step(std::size_t first, std::size_t count, double h) {
   for (std::size_t i = 0; i < count; ++i)
     walkers_[first + i].measure(steps_[i]);

@@ -823,8 +823,9 @@ void Walker::finish_step(double h, StepData& d) {
     LegState& l = state_.legs[static_cast<std::size_t>(leg)];
     const std::optional<double> tip_ground = placed_tip_ground[static_cast<std::size_t>(leg)];
     const bool stands = tip_ground.has_value();
-    LegPoints p = stands ? end_points_[static_cast<std::size_t>(leg)]
-                         : leg_points(leg, state_.pelvis, l.angles);
+    // Placed where the next step starts from (a standing swing foot is there already).
+    LegPoints& p = end_points_[static_cast<std::size_t>(leg)];
+    if (!stands) p = leg_points(leg, state_.pelvis, l.angles);
     // A foot that has just lifted off can sit a hair below the ground once the other foot takes
     // the pelvis: lift it at once. (Its toe tip is left to the toes, which bend up below.)
     if (!stands && l.phase == Phase::Swing && state_.lead >= 0 &&
@@ -839,7 +840,6 @@ void Walker::finish_step(double h, StepData& d) {
       l.angles.toe = std::max(l.angles.toe, arcsin(rise) - foot_of(tilt, l.angles));
       p = leg_points(leg, state_.pelvis, l.angles);
     }
-    end_points_[static_cast<std::size_t>(leg)] = p;
     const LegAngles& before = previous[static_cast<std::size_t>(leg)];
     // What a joint remembers as its speed is capped: a jump made in one step (the chain closing
     // onto a foot put down far from the body after an awkward start) must not carry on as a

@@ -30,8 +30,10 @@ inline constexpr double kSinCosExactBelow = 1.0e6;
 // sin and cos of x[i] for i < N. Branch-free in the lanes, so a compiler can vectorise the
 // loop; a lane with |x| beyond kSinCosExactBelow (or infinite) is then given libm's answer, so
 // each lane's bits do not depend on its neighbours (a crowd's batch equals a lone walker's call).
+// (Always inlined, so that each vector width's copy of a batch gets its own at any -O level.)
 template <std::size_t N>
-inline void sin_cos(const double (&x)[N], double (&sin)[N], double (&cos)[N]) {
+[[gnu::always_inline]] inline void sin_cos_lanes(const double* __restrict x, double* __restrict sin,
+                                                 double* __restrict cos) {
   bool in_range = true;
   for (std::size_t i = 0; i < N; ++i)
     in_range = in_range && !(std::abs(x[i]) >= kSinCosExactBelow);  // NaN propagates below
@@ -84,16 +86,20 @@ inline void sin_cos(const double (&x)[N], double (&sin)[N], double (&cos)[N]) {
   }
 }
 
+template <std::size_t N>
+[[gnu::always_inline]] inline void sin_cos(const double (&x)[N], double (&sin)[N],
+                                           double (&cos)[N]) {
+  sin_cos_lanes<N>(x, sin, cos);
+}
+
 // sin and cos of x[i] for i < n, lane for lane the bits of sin_cos above, in the widest vectors
 // the machine has (AVX-512, AVX2 or SSE2, chosen when the library loads): a crowd's legs at once.
 void sin_cos(const double* x, double* sin, double* cos, std::size_t n);
 
 inline SinCos sin_cos(double x) {
-  const double in[1] = {x};
-  double s[1];
-  double c[1];
-  sin_cos(in, s, c);
-  return {s[0], c[0]};
+  SinCos r;
+  sin_cos_lanes<1>(&x, &r.sin, &r.cos);
+  return r;
 }
 
 // atan(t) for t in [0, 1].

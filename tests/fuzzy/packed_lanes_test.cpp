@@ -45,6 +45,9 @@ std::vector<double> inputs_for(const std::vector<double>& knots, std::size_t n, 
       case 9:
         x[i] = knots[knot(random)] + 2e-6;
         break;
+      case 10:  // the tolerance itself away from a knot (exactly, for a knot at zero)
+        x[i] = (i % 4 == 0 ? 0.0 : knots[knot(random)]) + (i % 3 == 0 ? 1e-6 : -1e-6);
+        break;
       case 11:
         x[i] = i % 3 == 0 ? kNaN : (i % 3 == 1 ? kInf : -kInf);
         break;
@@ -95,6 +98,18 @@ void expect_batch_matches_scalar(const fuzzy::Engine& engine, const std::string&
   EXPECT_EQ(differ, 0) << label;
 }
 
+// On a machine with AVX2 (GCC, x86-64) the batch runs in vector lanes, so these tests compare the
+// vector kernel with the scalar path, not the scalar path with itself.
+TEST(PackedLanes, RunInVectorsWhereTheMachineHasThem) {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  __builtin_cpu_init();
+  EXPECT_EQ(fuzzy::PackedPartition::batch_in_vectors(), __builtin_cpu_supports("avx2") != 0);
+#else
+  EXPECT_FALSE(fuzzy::PackedPartition::batch_in_vectors());
+#endif
+  RecordProperty("batch_in_vectors", fuzzy::PackedPartition::batch_in_vectors() ? "yes" : "no");
+}
+
 TEST(PackedLanes, EveryShippedControllerMatchesItsScalarEvaluation) {
   for (const std::string& name : gait::ControllerSet::builtin_names()) {
     for (const gait::Controller& c : gait::ControllerSet::builtin(name).controllers) {
@@ -140,7 +155,60 @@ TEST(PackedLanes, MinimumConjunctionWideInputsAndANanDefault) {
               std::to_string(c) + "\n";
     }
   }
-  expect_batch_matches_scalar(fuzzy::read_fll(wide), "8 x 2 knots");
+  const fuzzy::Engine wide_engine = fuzzy::read_fll(wide);
+  expect_batch_matches_scalar(wide_engine, "8 x 2 knots");
+  // A degree of exactly the tolerance fires (1e-6 above the knot at 0, the next at 1), one just
+  // below it does not, as in fuzzylite.
+  const fuzzy::PackedPartition wide_packed =
+      *fuzzy::PackedPartition::pack(*fuzzy::as_partition(wide_engine));
+  const double at_tolerance[4] = {1e-6, 1e-6, 0.99e-6, 0.99e-6};
+  const double y_knot[4] = {-1.0, 1.0, -1.0, 1.0};
+  double lanes[4];
+  wide_packed.evaluate(at_tolerance, y_knot, lanes, 4);
+  for (int i = 0; i < 4; ++i) {
+    const double scalar = wide_packed.evaluate(at_tolerance[i], y_knot[i]);
+    EXPECT_EQ(std::memcmp(&lanes[i], &scalar, sizeof scalar), 0) << i;
+  }
+  EXPECT_NE(wide_packed.evaluate(1e-6, -1.0), wide_packed.evaluate(0.99e-6, -1.0));
+
+  // Knots more than the largest double apart: a degree is inf / inf, NaN, which the minimum
+  // passes over (fuzzylite's Op::min), as the scalar path does.
+  std::string huge = minimum;
+  const std::string knee_input = huge.substr(huge.find("InputVariable: knee"));
+  huge.replace(huge.find("InputVariable: knee"), knee_input.find("OutputVariable"),
+               "InputVariable: knee\n  enabled: true\n  range: -1.5e308 1.5e308\n"
+               "  lock-range: true\n  term: straight Triangle -1.5e308 -1.5e308 1.5e308\n"
+               "  term: bent Triangle -1.5e308 1.5e308 1.5e308\n");
+  std::string::size_type at = 0;
+  while ((at = huge.find("knee is deep", at)) != std::string::npos) {
+    const std::string::size_type line = huge.rfind('\n', at);
+    huge.erase(line, huge.find('\n', at) - line);
+  }
+  const fuzzy::Engine huge_engine = fuzzy::read_fll(huge);
+  expect_batch_matches_scalar(huge_engine, "knots 3e308 apart, minimum");
+  const fuzzy::PackedPartition packed =
+      *fuzzy::PackedPartition::pack(*fuzzy::as_partition(huge_engine));
+  const double x0[4] = {0.5, 0.5, 0.5, 0.5};
+  const double x1[4] = {-1e308, -1e308, -1e308, -1e308};
+  double out[4];
+  packed.evaluate(x0, x1, out, 4);
+  const double scalar = packed.evaluate(0.5, -1e308);
+  EXPECT_FALSE(std::isnan(scalar));
+  for (const double lane : out)
+    EXPECT_EQ(std::memcmp(&lane, &scalar, sizeof scalar), 0) << lane << " vs " << scalar;
+}
+
+// The batch counts the knots below an input, which finds its interval only when knots increase:
+// pack() refuses others.
+TEST(PackedLanes, PackRefusesKnotsThatDoNotIncrease) {
+  fuzzy::PartitionController<double> c;
+  c.knots[0] = {0.0, 2.0, 1.0, 3.0};
+  c.consequents = {1.0, 2.0, 3.0, 4.0};
+  EXPECT_FALSE(fuzzy::PackedPartition::pack(c));
+  c.knots[0] = {0.0, 1.0, 1.0, 3.0};
+  EXPECT_FALSE(fuzzy::PackedPartition::pack(c));
+  c.knots[0] = {0.0, 1.0, 2.0, 3.0};
+  EXPECT_TRUE(fuzzy::PackedPartition::pack(c));
 }
 
 }  // namespace

@@ -76,7 +76,7 @@ void walk_crowd_and_alone(const gait::ControllerSet& set, const terrain::Terrain
       for (std::size_t i = 0; i < characters.size(); i += 3) {
         const double step = 0.5 * (crowd[i].step_length() +
                                    gait::Walker::min_step_length(set, crowd[i].segments()));
-        crowd.character(i).set_step_length(step);
+        crowd.set_step_length(i, step);
         alone[i].set_step_length(step);
       }
     }
@@ -85,9 +85,9 @@ void walk_crowd_and_alone(const gait::ControllerSet& set, const terrain::Terrain
       alone[i].advance(dt);
       expect_same_walk(crowd[i], alone[i], set.name + " character " + std::to_string(i));
       if (::testing::Test::HasFatalFailure()) return;
-      crowd.character(i).clear_events();
       alone[i].clear_events();
     }
+    crowd.clear_events();
   }
 }
 
@@ -123,8 +123,7 @@ TEST(Crowd, AdvancingAllocatesNothing) {
   const long before = fuzzygait::testing::allocation_count();
   for (int i = 0; i < 120; ++i) {
     crowd.advance(1.0 / 60.0);
-    for (std::size_t c = 0; c < crowd.size(); ++c)
-      crowd.character(c).clear_events();
+    crowd.clear_events();
   }
   EXPECT_EQ(fuzzygait::testing::allocation_count(), before);
 }
@@ -156,7 +155,8 @@ TEST(Crowd, BadInputGetsClearErrors) {
   gait::Crowd crowd(set, ground, characters);
   EXPECT_THROW(crowd.advance(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
   EXPECT_THROW(crowd.advance(-1.0), std::invalid_argument);
-  EXPECT_THROW(crowd.character(0).set_step_length(0.1), std::invalid_argument);
+  EXPECT_THROW(crowd.set_step_length(0, 0.1), std::invalid_argument);
+  EXPECT_THROW(crowd.set_step_length(3, 0.7), std::out_of_range);
   gait::Crowd empty(set, ground, {});
   EXPECT_EQ(empty.size(), 0u);
   EXPECT_NO_THROW(empty.advance(1.0));

@@ -128,7 +128,8 @@ class PackedPartition {
  public:
   static constexpr std::size_t kMaxKnots = 8;
 
-  // nullopt when an input has more than kMaxKnots knots (evaluate the controller itself).
+  // nullopt when an input has more than kMaxKnots knots or knots that do not increase (evaluate
+  // the controller itself).
   static std::optional<PackedPartition> pack(const PartitionController<double>& controller);
 
   double evaluate(double x0, double x1 = 0.0) const {
@@ -146,6 +147,8 @@ class PackedPartition {
   // when the machine has it, chosen once): a crowd's characters through one controller at once.
   // x1 is not read for a one-input controller (it may then be null).
   void evaluate(const double* x0, const double* x1, double* out, std::size_t n) const;
+  // Whether that batch runs in vector lanes on this machine (else it calls evaluate() in turn).
+  static bool batch_in_vectors();
 
  private:
   enum class Shape : std::uint8_t { OneInput, Product, Minimum };

@@ -1,8 +1,9 @@
 // Many characters walking with one controller set on one terrain, stepped together: each stage of
 // a time step runs for a block of characters before the next, so each controller is evaluated for
-// all of the block's legs it drives at once and the legs' sines and cosines in one batch, in the
-// widest vectors the machine has. Every character walks bit for bit as a lone Walker with its
-// options would: the crowd does the same arithmetic, only in a different order of characters.
+// all of the block's legs it drives at once (AVX2 lanes where the machine has them), and the legs'
+// segment sines and cosines in one batch (the widest vectors the machine has). Every character
+// walks bit for bit as a lone Walker with its options would: the crowd does the same arithmetic,
+// only in a different order of characters.
 #pragma once
 
 #include <array>
@@ -28,10 +29,12 @@ class Crowd {
   // file access. Throws std::invalid_argument for a dt that is NaN, negative or over an hour.
   void advance(double dt);
 
-  // A character: its pose, state and events, and set_step_length(). Advancing one alone is
-  // allowed (it is a Walker); the crowd then goes on from where that character is.
+  // A character: its pose, points, state and events, read as a Walker's.
   const Walker& operator[](std::size_t i) const { return walkers_[i]; }
-  Walker& character(std::size_t i) { return walkers_[i]; }
+  // Walker::set_step_length() of character i (throws std::out_of_range past the crowd).
+  void set_step_length(std::size_t i, double metres) { walkers_.at(i).set_step_length(metres); }
+  // Every character's Walker::clear_events().
+  void clear_events();
 
   // Whether the controllers are evaluated across characters (every controller of the set on the
   // fast path and no character with a controller back end); otherwise each character evaluates
