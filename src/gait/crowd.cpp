@@ -39,7 +39,7 @@ Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
     input0_.resize(lanes);
     input1_.resize(lanes);
     output_.resize(lanes);
-    command_of_.resize(lanes);
+    commands_of_.resize(2 * kLanesPerSlot);
     for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
       const Controller& c = controllers.controllers[s];
       packed_[s] = c.packed();
@@ -87,27 +87,32 @@ void Crowd::command(std::size_t first, std::size_t count) {
       walkers_[first + i].command(steps_[i].metrics, steps_[i].commands);
     return;
   }
-  std::size_t used[kSlotCount] = {};
+  // A leg's four controllers are those of its phase, so it takes the same lane in each.
+  std::size_t legs_in[2] = {};  // [swing, stance]
   for (std::size_t i = 0; i < count; ++i) {
     Walker::StepData& d = steps_[i];
     const WalkerState& state = walkers_[first + i].state_;
     for (std::size_t leg = 0; leg < 2; ++leg) {
-      const std::size_t phase_slots = state.legs[leg].phase == Phase::Swing ? 0 : 4;
+      const std::size_t phase = state.legs[leg].phase == Phase::Swing ? 0 : 1;
+      const std::size_t k = legs_in[phase]++;
       const MetricValues& m = d.metrics[leg];
       for (std::size_t joint = 0; joint < 4; ++joint) {
-        const std::size_t s = phase_slots + joint;
-        const std::size_t lane = s * kLanesPerSlot + used[s]++;
+        const std::size_t s = 4 * phase + joint;
+        const std::size_t lane = s * kLanesPerSlot + k;
         input0_[lane] = m[input_of_slot_[s][0]];
         input1_[lane] = m[input_of_slot_[s][1]];
-        command_of_[lane] = &d.commands[leg][joint];
       }
+      commands_of_[phase * kLanesPerSlot + k] = &d.commands[leg];
     }
   }
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
+    const std::size_t phase = s / 4;
+    const std::size_t joint = s % 4;
     const std::size_t lane = s * kLanesPerSlot;
-    packed_[s]->evaluate(&input0_[lane], &input1_[lane], &output_[lane], used[s]);
-    for (std::size_t k = lane; k < lane + used[s]; ++k)
-      *command_of_[k] = output_[k];
+    packed_[s]->evaluate(&input0_[lane], &input1_[lane], &output_[lane], legs_in[phase]);
+    std::array<double, 4>* const* commands = &commands_of_[phase * kLanesPerSlot];
+    for (std::size_t k = 0; k < legs_in[phase]; ++k)
+      (*commands[k])[joint] = output_[lane + k];
   }
 }
 

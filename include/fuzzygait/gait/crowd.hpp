@@ -59,7 +59,7 @@ class Crowd {
   std::vector<double> input0_;
   std::vector<double> input1_;
   std::vector<double> output_;
-  std::vector<double*> command_of_;  // where each lane's output goes
+  std::vector<std::array<double, 4>*> commands_of_;  // [phase][lane]: the leg's commands
   // A block's leg orientations (four a leg) and their sines and cosines.
   std::vector<double> angles_;
   std::vector<double> sines_;
