@@ -100,15 +100,30 @@ gait::Walker walker_after_warm_up(const gait::ControllerSet& set,
   return walker;
 }
 
-// Wall seconds to walk `frames` frames, clearing the events every frame as a game would.
-double seconds_for(gait::Walker& walker, long frames) {
+// Wall seconds to walk `frames` frames, clearing the events every frame as a game would: a
+// Walker, a Crowd, or walkers InTurn.
+template <class Walkers>
+double seconds_for(Walkers& walkers, long frames) {
   return wall_seconds([&] {
     for (long f = 0; f < frames; ++f) {
-      walker.advance(kFrame);
-      walker.clear_events();
+      walkers.advance(kFrame);
+      walkers.clear_events();
     }
   });
 }
+
+// Lone walkers advanced one after another, as a game without a crowd would.
+struct InTurn {
+  std::vector<gait::Walker> walkers;
+  void advance(double dt) {
+    for (gait::Walker& w : walkers)
+      w.advance(dt);
+  }
+  void clear_events() {
+    for (gait::Walker& w : walkers)
+      w.clear_events();
+  }
+};
 
 // Frames that take about `min_seconds` on a fresh walker, from 16 frames up.
 long frames_for(const gait::ControllerSet& set, const gait::WalkerOptions& options,
@@ -287,16 +302,6 @@ void check_crowd(const gait::ControllerSet& set, const gait::WalkerOptions& opti
   if (!same) throw std::runtime_error("a crowd's character walks differently from a lone walker");
 }
 
-// Wall seconds for a crowd to walk `frames` frames, clearing the events every frame.
-double crowd_seconds_for(gait::Crowd& crowd, long frames) {
-  return wall_seconds([&] {
-    for (long f = 0; f < frames; ++f) {
-      crowd.advance(kFrame);
-      crowd.clear_events();
-    }
-  });
-}
-
 // The crowd: its characters checked against themselves alone, then walked with the set's
 // controllers and with fuzzylite's in turn. Each crowd is built once (a fuzzylite crowd's warm-up
 // alone takes seconds) and walks on from one repetition to the next, in its steady gait.
@@ -308,44 +313,32 @@ void run_crowd_benchmark(const gait::ControllerSet& set, const gait::WalkerOptio
   gait::Crowd ours(set, ground, characters);
   gait::Crowd theirs(set, ground, crowd_characters(through_fuzzylite, o.crowd));
   // The same characters as lone walkers, advanced one after another every frame.
-  std::vector<gait::Walker> in_turn;
+  InTurn in_turn;
   for (const gait::WalkerOptions& c : characters)
-    in_turn.emplace_back(set, c, ground);
-  auto in_turn_seconds_for = [&](long frames) {
-    return wall_seconds([&] {
-      for (long f = 0; f < frames; ++f) {
-        for (gait::Walker& w : in_turn) {
-          w.advance(kFrame);
-          w.clear_events();
-        }
-      }
-    });
-  };
+    in_turn.walkers.emplace_back(set, c, ground);
   const double steps_in_frame =
       steps_per_frame(options) * static_cast<double>(o.crowd);  // character-steps
-  auto frames_for_crowd = [&](gait::Crowd& crowd) {
-    return calibrate(1, o.min_seconds,
-                     [&](long frames) { return crowd_seconds_for(crowd, frames); });
+  auto frames_to_time = [&](auto& walkers) {
+    return calibrate(1, o.min_seconds, [&](long frames) { return seconds_for(walkers, frames); });
   };
-  const long our_frames = frames_for_crowd(ours);
-  const long their_frames = frames_for_crowd(theirs);
-  const long in_turn_frames = calibrate(1, o.min_seconds, in_turn_seconds_for);
+  const long our_frames = frames_to_time(ours);
+  const long their_frames = frames_to_time(theirs);
+  const long in_turn_frames = frames_to_time(in_turn);
   std::vector<double> our_ns;
   std::vector<double> their_ns;
   std::vector<double> in_turn_ns;
-  auto time_crowd = [&](gait::Crowd& crowd, long frames, std::vector<double>& ns) {
-    const double seconds = crowd_seconds_for(crowd, frames);
+  auto time_walk = [&](auto& walkers, long frames, std::vector<double>& ns) {
+    const double seconds = seconds_for(walkers, frames);
     ns.push_back(1e9 * seconds / (static_cast<double>(frames) * steps_in_frame));
   };
   for (int r = 0; r < o.repetitions; ++r) {
     run_alternating(
         r,
         [&] {
-          time_crowd(ours, our_frames, our_ns);
-          in_turn_ns.push_back(1e9 * in_turn_seconds_for(in_turn_frames) /
-                               (static_cast<double>(in_turn_frames) * steps_in_frame));
+          time_walk(ours, our_frames, our_ns);
+          time_walk(in_turn, in_turn_frames, in_turn_ns);
         },
-        [&] { time_crowd(theirs, their_frames, their_ns); });
+        [&] { time_walk(theirs, their_frames, their_ns); });
     std::printf(
         "crowd run %d: fuzzygait %8.1f ns per character-step (%ld frames), the same characters "
         "in turn %8.1f ns (%ld frames), fuzzylite %8.1f ns (%ld frames)\n",

@@ -1,7 +1,6 @@
 #include "fuzzygait/gait/crowd.hpp"
 
 #include <algorithm>
-#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -120,23 +119,17 @@ void Crowd::command(std::size_t first, std::size_t count) {
 // with next (finish_step() finds them in its cache).
 void Crowd::place_legs(std::size_t first, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
-    for (int leg = 0; leg < 2; ++leg) {
-      const rig::LegOrientation o = walkers_[first + i].orientation(leg);
-      double* a = &angles_[8 * i + 4 * static_cast<std::size_t>(leg)];
-      a[0] = o.thigh;
-      a[1] = o.shank;
-      a[2] = o.foot;
-      a[3] = o.toes;
+    for (std::size_t leg = 0; leg < 2; ++leg) {
+      Walker::TrigCache& cache = walkers_[first + i].trig_[leg];
+      cache.orientation = walkers_[first + i].orientation(static_cast<int>(leg));
+      rig::detail::to_lanes(cache.orientation, &angles_[8 * i + 4 * leg]);
     }
   }
   rig::detail::sin_cos(angles_.data(), sines_.data(), cosines_.data(), 8 * count);
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t leg = 0; leg < 2; ++leg) {
-      const std::size_t at = 8 * i + 4 * leg;
-      Walker::TrigCache& cache = walkers_[first + i].trig_[leg];
-      cache.orientation = {angles_[at], angles_[at + 1], angles_[at + 2], angles_[at + 3]};
-      cache.trig = {sines_[at],     cosines_[at],     sines_[at + 1], cosines_[at + 1],
-                    sines_[at + 2], cosines_[at + 2], sines_[at + 3], cosines_[at + 3]};
+      walkers_[first + i].trig_[leg].trig =
+          rig::detail::from_lanes(&sines_[8 * i + 4 * leg], &cosines_[8 * i + 4 * leg]);
     }
   }
 }

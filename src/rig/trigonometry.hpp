@@ -166,12 +166,15 @@ inline double arcsin(double s) {
   return arctan2(s, std::sqrt((1.0 - s) * (1.0 + s)));
 }
 
-// rig::trig, inline for the walker's inner loop: the four orientations in one call.
-inline LegTrig leg_trig(const LegOrientation& o) {
-  const double angles[4] = {o.thigh, o.shank, o.foot, o.toes};
-  double sin[4];
-  double cos[4];
-  sin_cos(angles, sin, cos);
+// A leg's four orientations as four lanes (thigh, shank, foot, toes), and their lanes' sines and
+// cosines back as a LegTrig: the layout of leg_trig below and of a crowd's batch of legs.
+inline void to_lanes(const LegOrientation& o, double* lanes) {
+  lanes[0] = o.thigh;
+  lanes[1] = o.shank;
+  lanes[2] = o.foot;
+  lanes[3] = o.toes;
+}
+inline LegTrig from_lanes(const double* sin, const double* cos) {
   LegTrig t;
   t.thigh_sin = sin[0];
   t.thigh_cos = cos[0];
@@ -182,6 +185,16 @@ inline LegTrig leg_trig(const LegOrientation& o) {
   t.toes_sin = sin[3];
   t.toes_cos = cos[3];
   return t;
+}
+
+// rig::trig, inline for the walker's inner loop: the four orientations in one call.
+inline LegTrig leg_trig(const LegOrientation& o) {
+  double angles[4];
+  to_lanes(o, angles);
+  double sin[4];
+  double cos[4];
+  sin_cos(angles, sin, cos);
+  return from_lanes(sin, cos);
 }
 
 }  // namespace fuzzygait::rig::detail
