@@ -34,10 +34,8 @@ Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
   for (const WalkerOptions& o : characters)
     batched_ = batched_ && !o.controller_backend;
   if (batched_) {
-    const std::size_t lanes = kLanesPerSlot * static_cast<std::size_t>(kSlotCount);
-    input0_.resize(lanes);
-    input1_.resize(lanes);
-    output_.resize(lanes);
+    metrics_.resize(2 * kMetricCount * kLanesPerSlot);
+    output_.resize(kLanesPerSlot * static_cast<std::size_t>(kSlotCount));
     commands_of_.resize(2 * kLanesPerSlot);
     for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
       const Controller& c = controllers.controllers[s];
@@ -88,19 +86,16 @@ void Crowd::command(std::size_t first, std::size_t count) {
   }
   // A leg's four controllers are those of its phase, so it takes the same lane in each.
   std::size_t legs_in[2] = {};  // [swing, stance]
+  constexpr std::size_t kMetrics = kMetricCount;
   for (std::size_t i = 0; i < count; ++i) {
     Walker::StepData& d = steps_[i];
     const WalkerState& state = walkers_[first + i].state_;
     for (std::size_t leg = 0; leg < 2; ++leg) {
       const std::size_t phase = state.legs[leg].phase == Phase::Swing ? 0 : 1;
       const std::size_t k = legs_in[phase]++;
-      const MetricValues& m = d.metrics[leg];
-      for (std::size_t joint = 0; joint < 4; ++joint) {
-        const std::size_t s = 4 * phase + joint;
-        const std::size_t lane = s * kLanesPerSlot + k;
-        input0_[lane] = m[input_of_slot_[s][0]];
-        input1_[lane] = m[input_of_slot_[s][1]];
-      }
+      double* metrics = &metrics_[phase * kMetrics * kLanesPerSlot + k];
+      for (std::size_t m = 0; m < kMetrics; ++m)
+        metrics[m * kLanesPerSlot] = d.metrics[leg][m];
       commands_of_[phase * kLanesPerSlot + k] = &d.commands[leg];
     }
   }
@@ -108,7 +103,10 @@ void Crowd::command(std::size_t first, std::size_t count) {
     const std::size_t phase = s / 4;
     const std::size_t joint = s % 4;
     const std::size_t lane = s * kLanesPerSlot;
-    packed_[s]->evaluate(&input0_[lane], &input1_[lane], &output_[lane], legs_in[phase]);
+    const double* metrics = &metrics_[phase * kMetrics * kLanesPerSlot];
+    packed_[s]->evaluate(metrics + input_of_slot_[s][0] * kLanesPerSlot,
+                         metrics + input_of_slot_[s][1] * kLanesPerSlot, &output_[lane],
+                         legs_in[phase]);
     std::array<double, 4>* const* commands = &commands_of_[phase * kLanesPerSlot];
     for (std::size_t k = 0; k < legs_in[phase]; ++k)
       (*commands[k])[joint] = output_[lane + k];

@@ -53,11 +53,12 @@ class Crowd {
   std::vector<Walker::StepData> steps_;  // a block's
   bool batched_ = false;
   double time_step_ = 0.0;
-  // Each slot's controller, the metrics it reads, and its lanes: room for both legs of a block.
+  // Each slot's controller and the metrics it reads. A block's legs take lanes by phase (swing,
+  // stance): each metric of each phase's legs, [phase][metric][lane], and each slot's outputs,
+  // [slot][lane]; room for both legs of a block in either phase.
   std::array<const fuzzy::PackedPartition*, kSlotCount> packed_{};
   std::array<std::array<std::size_t, 2>, kSlotCount> input_of_slot_{};
-  std::vector<double> input0_;
-  std::vector<double> input1_;
+  std::vector<double> metrics_;
   std::vector<double> output_;
   std::vector<std::array<double, 4>*> commands_of_;  // [phase][lane]: the leg's commands
   // A block's leg orientations (four a leg) and their sines and cosines.

@@ -145,10 +145,10 @@ void validate(const JointLimits& limits);
 // Inline: the walker converts its metrics every time step. One multiplication by the ratio (a
 // division per conversion was sixteen divisions a walker step); within an ulp of converting with
 // a multiply and a divide.
-inline double degrees(double radians) {
+constexpr double degrees(double radians) {
   return radians * (180.0 / std::numbers::pi);
 }
-inline double radians(double degrees) {
+constexpr double radians(double degrees) {
   return degrees * (std::numbers::pi / 180.0);
 }
 
