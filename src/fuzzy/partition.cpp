@@ -292,7 +292,8 @@ using Mask = PackedLanes::Mask;
 void PackedLanes::avx2(const PackedPartition& p, const double* x0, const double* x1, double* out,
                        std::size_t n) {
   using Shape = PackedPartition::Shape;
-  constexpr std::size_t kWidth = 4;
+  constexpr std::size_t kWidth = PackedPartition::kVectorLanes;
+  static_assert(sizeof(Real) == kWidth * sizeof(double));
   const double* consequents = p.consequents_.data();
   const std::size_t whole = n - n % kWidth;
   for (std::size_t at = 0; at < whole; at += kWidth) {

@@ -99,6 +99,12 @@ void Crowd::command(std::size_t first, std::size_t count) {
       commands_of_[phase * kLanesPerSlot + k] = &d.commands[leg];
     }
   }
+  // Each phase's lanes rounded up to whole vectors: the padding lanes (what earlier steps left
+  // there) cost less in a vector than the last few legs one by one, and their outputs are unread.
+  constexpr std::size_t kVector = fuzzy::PackedPartition::kVectorLanes;
+  static_assert(kLanesPerSlot % kVector == 0);
+  const std::size_t lanes_in[2] = {(legs_in[0] + kVector - 1) / kVector * kVector,
+                                   (legs_in[1] + kVector - 1) / kVector * kVector};
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
     const std::size_t phase = s / 4;
     const std::size_t joint = s % 4;
@@ -106,7 +112,7 @@ void Crowd::command(std::size_t first, std::size_t count) {
     const double* metrics = &metrics_[phase * kMetrics * kLanesPerSlot];
     packed_[s]->evaluate(metrics + input_of_slot_[s][0] * kLanesPerSlot,
                          metrics + input_of_slot_[s][1] * kLanesPerSlot, &output_[lane],
-                         legs_in[phase]);
+                         lanes_in[phase]);
     std::array<double, 4>* const* commands = &commands_of_[phase * kLanesPerSlot];
     for (std::size_t k = 0; k < legs_in[phase]; ++k)
       (*commands[k])[joint] = output_[lane + k];

@@ -1,7 +1,9 @@
 #include "fuzzygait/terrain/terrain.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +15,9 @@ Terrain::Terrain(std::vector<Point> points) : points_(std::move(points)) {
   for (std::size_t i = 0; i + 1 < points_.size(); ++i) {
     slopes_.push_back(std::atan2(points_[i + 1].y - points_[i].y, points_[i + 1].x - points_[i].x));
   }
+  level_ = std::all_of(points_.begin(), points_.end(), [&](const Point& p) {
+    return std::bit_cast<std::uint64_t>(p.y) == std::bit_cast<std::uint64_t>(points_[0].y);
+  });
 }
 
 Terrain Terrain::flat() {

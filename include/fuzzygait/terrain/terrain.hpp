@@ -26,7 +26,9 @@ class Terrain {
   static Terrain polyline(std::vector<Point> points);
 
   double height(double x) const {
-    // Inline: the walker asks several times a time step, mostly of flat ground.
+    // Inline: the walker asks several times a time step, mostly of level ground, which answers
+    // at once (the same bits as the search below).
+    if (level_ && !std::isnan(x)) return points_.front().y;
     if (x <= points_.front().x) return points_.front().y;
     if (x >= points_.back().x) return points_.back().y;
     const std::size_t i = segment(x);
@@ -37,6 +39,7 @@ class Terrain {
   }
   // Slope angle (radians, uphill forward +) of the segment under x. Inline, as height().
   double slope(double x) const {
+    if (level_) return 0.0;  // every segment's slope is +0 too
     if (x < points_.front().x || x > points_.back().x) return 0.0;
     return slopes_[segment(x)];
   }
@@ -51,6 +54,7 @@ class Terrain {
   std::size_t search_segment(double x) const;
   std::vector<Point> points_;
   std::vector<double> slopes_;  // of each segment, radians
+  bool level_ = false;          // every point's y the same, to the bit
 };
 
 }  // namespace fuzzygait::terrain
