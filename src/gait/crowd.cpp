@@ -36,7 +36,7 @@ Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
   if (batched_) {
     metrics_.resize(2 * kMetricCount * kLanesPerSlot);
     output_.resize(kLanesPerSlot * static_cast<std::size_t>(kSlotCount));
-    commands_of_.resize(2 * kLanesPerSlot);
+    output_of_.resize(2 * kBlock);
     for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
       const Controller& c = controllers.controllers[s];
       packed_[s] = c.packed();
@@ -96,7 +96,7 @@ void Crowd::command(std::size_t first, std::size_t count) {
       double* metrics = &metrics_[phase * kMetrics * kLanesPerSlot + k];
       for (std::size_t m = 0; m < kMetrics; ++m)
         metrics[m * kLanesPerSlot] = d.metrics[leg][m];
-      commands_of_[phase * kLanesPerSlot + k] = &d.commands[leg];
+      output_of_[2 * i + leg] = 4 * phase * kLanesPerSlot + k;
     }
   }
   // Each phase's lanes rounded up to whole vectors: the padding lanes (what earlier steps left
@@ -107,15 +107,19 @@ void Crowd::command(std::size_t first, std::size_t count) {
                                    (legs_in[1] + kVector - 1) / kVector * kVector};
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
     const std::size_t phase = s / 4;
-    const std::size_t joint = s % 4;
     const std::size_t lane = s * kLanesPerSlot;
     const double* metrics = &metrics_[phase * kMetrics * kLanesPerSlot];
     packed_[s]->evaluate(metrics + input_of_slot_[s][0] * kLanesPerSlot,
                          metrics + input_of_slot_[s][1] * kLanesPerSlot, &output_[lane],
                          lanes_in[phase]);
-    std::array<double, 4>* const* commands = &commands_of_[phase * kLanesPerSlot];
-    for (std::size_t k = 0; k < legs_in[phase]; ++k)
-      (*commands[k])[joint] = output_[lane + k];
+  }
+  // Each leg's four outputs, a slot's lanes apart, to its commands.
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t leg = 0; leg < 2; ++leg) {
+      const double* out = &output_[output_of_[2 * i + leg]];
+      for (std::size_t joint = 0; joint < 4; ++joint)
+        steps_[i].commands[leg][joint] = out[joint * kLanesPerSlot];
+    }
   }
 }
 

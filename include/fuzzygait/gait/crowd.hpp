@@ -60,7 +60,7 @@ class Crowd {
   std::array<std::array<std::size_t, 2>, kSlotCount> input_of_slot_{};
   std::vector<double> metrics_;
   std::vector<double> output_;
-  std::vector<std::array<double, 4>*> commands_of_;  // [phase][lane]: the leg's commands
+  std::vector<std::size_t> output_of_;  // [character][leg]: where its hip's output lies
   // A block's leg orientations (four a leg) and their sines and cosines.
   std::vector<double> angles_;
   std::vector<double> sines_;
