@@ -430,7 +430,8 @@ void run_gait_benchmark(const Options& o) {
 void add_gait_command(CLI::App& app) {
   auto options = std::make_shared<Options>();
   CLI::App* gait = app.add_subcommand(
-      "gait", "Character-steps per second of the walker, against fuzzylite in the loop");
+      "gait",
+      "Character-steps per second of a lone walker and of a crowd, against fuzzylite in the loop");
   gait->add_option("--style", options->style, "Built-in controller set")->capture_default_str();
   gait->add_option("--controllers", options->controllers,
                    "Controller set folder (manifest.json + FLL) instead of a built-in set");
@@ -440,8 +441,8 @@ void add_gait_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   gait->add_option("--crowd", options->crowd,
-                   "Characters in the crowd walked after the lone walker, whose figures end "
-                   "the output (0: no crowd; the lone walker's end it)")
+                   "Characters in the crowd walked after the lone walker; the crowd's figures "
+                   "end the output (0: no crowd, and the lone walker's end it)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
   gait->add_option("--check-time", options->check_seconds,

@@ -34,6 +34,7 @@ Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
   for (const WalkerOptions& o : characters)
     batched_ = batched_ && !o.controller_backend;
   if (batched_) {
+    vectors_ = fuzzy::PackedPartition::batch_in_vectors();
     metrics_.resize(2 * kMetricCount * kLanesPerSlot);
     output_.resize(kLanesPerSlot * static_cast<std::size_t>(kSlotCount));
     output_of_.resize(2 * kBlock);
@@ -75,9 +76,9 @@ void Crowd::step(std::size_t first, std::size_t count, double h) {
     walkers_[first + i].finish_step(h, steps_[i]);
 }
 
-// Each controller for every leg of the block it drives this step at once: the legs' metrics
-// gathered slot by slot, evaluated in vectors, and the outputs put back where each leg's command
-// goes.
+// Each controller for every leg of the block it drives this step at once: each leg's metrics laid
+// out once in its phase's lanes, metric by metric, each slot evaluated in vectors over its phase's
+// lanes, and each leg's four outputs put back as its commands.
 void Crowd::command(std::size_t first, std::size_t count) {
   if (!batched_) {
     for (std::size_t i = 0; i < count; ++i)
@@ -99,12 +100,15 @@ void Crowd::command(std::size_t first, std::size_t count) {
       output_of_[2 * i + leg] = 4 * phase * kLanesPerSlot + k;
     }
   }
-  // Each phase's lanes rounded up to whole vectors: the padding lanes (what earlier steps left
-  // there) cost less in a vector than the last few legs one by one, and their outputs are unread.
+  // With vectors, each phase's lanes rounded up to whole ones: the padding lanes (what earlier
+  // steps left there) cost less in a vector than the last few legs one by one, and their outputs
+  // are unread.
   constexpr std::size_t kVector = fuzzy::PackedPartition::kVectorLanes;
   static_assert(kLanesPerSlot % kVector == 0);
-  const std::size_t lanes_in[2] = {(legs_in[0] + kVector - 1) / kVector * kVector,
-                                   (legs_in[1] + kVector - 1) / kVector * kVector};
+  auto lanes_for = [this](std::size_t legs) {
+    return vectors_ ? (legs + kVector - 1) / kVector * kVector : legs;
+  };
+  const std::size_t lanes_in[2] = {lanes_for(legs_in[0]), lanes_for(legs_in[1])};
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
     const std::size_t phase = s / 4;
     const std::size_t lane = s * kLanesPerSlot;

@@ -69,4 +69,16 @@ inline std::string state_difference(const gait::WalkerState& a, const gait::Walk
   return "";
 }
 
+// Advances both walkers by `frames` frames of 1/60 s side by side: the first frame after which
+// their states differ to the bit, and where ("frame 12: left knee"), or "" if they never do.
+inline std::string walk_side_by_side(gait::Walker& a, gait::Walker& b, int frames) {
+  for (int frame = 0; frame < frames; ++frame) {
+    a.advance(1.0 / 60.0);
+    b.advance(1.0 / 60.0);
+    const std::string difference = state_difference(a.state(), b.state());
+    if (!difference.empty()) return "frame " + std::to_string(frame) + ": " + difference;
+  }
+  return "";
+}
+
 }  // namespace fuzzygait::test

@@ -67,7 +67,17 @@ TEST(Terrain, LevelGroundGivesTheSearchsBits) {
     }
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(std::isnan(level.height(nan)));
+  EXPECT_EQ(bits(level.slope(nan)), bits(0.0));
+  EXPECT_EQ(bits(level.height(inf)), bits(y));
+  EXPECT_EQ(bits(level.height(-inf)), bits(y));
+  EXPECT_EQ(bits(level.slope(-inf)), bits(0.0));
+  // Ends at the same height with a bump between them is not level.
+  const Terrain bump = Terrain::polyline({{-1.0, 0.0}, {0.0, 0.2}, {1.0, 0.0}});
+  EXPECT_DOUBLE_EQ(bump.height(0.0), 0.2);
+  EXPECT_DOUBLE_EQ(bump.height(0.5), 0.1);
+  EXPECT_DOUBLE_EQ(bump.slope(0.5), std::atan2(-0.2, 1.0));
   EXPECT_TRUE(std::isnan(Terrain::flat().height(nan)));
   EXPECT_EQ(bits(Terrain::flat().height(123.0)), bits(0.0));
   // Zeros of both signs are not the same bits: such ground is searched, each segment giving its

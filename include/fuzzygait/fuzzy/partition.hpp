@@ -145,8 +145,9 @@ class PackedPartition {
   }
   // out[i] = evaluate(x0[i], x1[i]) for i < n, bit for bit, in vectors across the lanes (AVX2
   // when the machine has it, chosen once): a crowd's characters through one controller at once.
-  // x1 is not read for a one-input controller (it may then be null). Lanes past a multiple of
-  // kVectorLanes are evaluated one by one: a caller with room may round n up to one.
+  // x1 is not read for a one-input controller (it may then be null). With vectors
+  // (batch_in_vectors()), lanes past a multiple of kVectorLanes are evaluated one by one: a caller
+  // with room may round n up to one. Without, every lane is.
   void evaluate(const double* x0, const double* x1, double* out, std::size_t n) const;
   static constexpr std::size_t kVectorLanes = 4;
   // Whether that batch runs in vector lanes on this machine (else it calls evaluate() in turn).

@@ -170,19 +170,20 @@ class Walker {
   void lift_off(int leg);
   void hand_over(int leg);
   void place_pelvis(int leg);
-  void place_pelvis(int leg, const rig::LegPoints& at_origin);
-  rig::LegPoints hip_at_origin(int leg);
   bool close_chain(int leg);
   void settle_foot(int leg, const rig::LegAngles& commanded);
   double stance_target() const;
-  double knee_gap(int leg, const rig::LegPoints& at_origin) const;
   void keep_knee_up(int leg, double known_good);
   void clear_ground(int leg, double max_change, double margin, bool with_tip = true);
-  void update_metrics(int leg, const rig::LegPoints& points, MetricValues& metrics);
   // Each leg's four controllers for its phase, [leg][joint]: hip, knee, ankle, toe.
   void command(const std::array<MetricValues, 2>& metrics,
                std::array<std::array<double, 4>, 2>& commands);
-  rig::LegPoints leg_points(int leg, rig::Point hip, const rig::LegAngles& angles);
+  // Defined inline in walker.cpp, the only file that calls them: inlined into the stages.
+  inline void place_pelvis(int leg, const rig::LegPoints& at_origin);
+  inline rig::LegPoints hip_at_origin(int leg);
+  inline double knee_gap(int leg, const rig::LegPoints& at_origin) const;
+  inline void update_metrics(int leg, const rig::LegPoints& points, MetricValues& metrics);
+  inline rig::LegPoints leg_points(int leg, rig::Point hip, const rig::LegAngles& angles);
 
   const ControllerSet* controllers_;
   const terrain::Terrain* terrain_;

@@ -49,7 +49,7 @@ class Terrain {
 
  private:
   explicit Terrain(std::vector<Point> points);
-  // Index of the segment under x; inline for one-segment ground (flat, a single slope).
+  // Index of the segment under x; inline for one-segment ground (a single slope).
   std::size_t segment(double x) const { return points_.size() == 2 ? 0 : search_segment(x); }
   std::size_t search_segment(double x) const;
   std::vector<Point> points_;
