@@ -34,7 +34,6 @@ Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
   for (const WalkerOptions& o : characters)
     batched_ = batched_ && !o.controller_backend;
   if (batched_) {
-    vectors_ = fuzzy::PackedPartition::batch_in_vectors();
     metrics_.resize(2 * kMetricCount * kLanesPerSlot);
     output_.resize(kLanesPerSlot * static_cast<std::size_t>(kSlotCount));
     output_of_.resize(2 * kBlock);
@@ -100,15 +99,11 @@ void Crowd::command(std::size_t first, std::size_t count) {
       output_of_[2 * i + leg] = 4 * phase * kLanesPerSlot + k;
     }
   }
-  // With vectors, each phase's lanes rounded up to whole ones: the padding lanes (what earlier
-  // steps left there) cost less in a vector than the last few legs one by one, and their outputs
-  // are unread.
-  constexpr std::size_t kVector = fuzzy::PackedPartition::kVectorLanes;
-  static_assert(kLanesPerSlot % kVector == 0);
-  auto lanes_for = [this](std::size_t legs) {
-    return vectors_ ? (legs + kVector - 1) / kVector * kVector : legs;
-  };
-  const std::size_t lanes_in[2] = {lanes_for(legs_in[0]), lanes_for(legs_in[1])};
+  // Each phase's lanes padded to whole vectors (the padding holds what earlier steps left there;
+  // its outputs are unread). A phase has room for every lane padding can add.
+  static_assert(kLanesPerSlot % fuzzy::PackedPartition::kVectorLanes == 0);
+  const std::size_t lanes_in[2] = {fuzzy::PackedPartition::padded_lanes(legs_in[0]),
+                                   fuzzy::PackedPartition::padded_lanes(legs_in[1])};
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
     const std::size_t phase = s / 4;
     const std::size_t lane = s * kLanesPerSlot;

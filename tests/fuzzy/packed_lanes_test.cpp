@@ -110,6 +110,22 @@ TEST(PackedLanes, RunInVectorsWhereTheMachineHasThem) {
   RecordProperty("batch_in_vectors", fuzzy::PackedPartition::batch_in_vectors() ? "yes" : "no");
 }
 
+// Padding rounds up to whole vectors only where there are vectors, and never past the next one.
+TEST(PackedLanes, PaddedLanesAreWholeVectorsWhereThereAreVectors) {
+  using fuzzy::PackedPartition;
+  constexpr std::size_t width = PackedPartition::kVectorLanes;
+  for (std::size_t n = 0; n <= 3 * width + 1; ++n) {
+    const std::size_t padded = PackedPartition::padded_lanes(n);
+    if (PackedPartition::batch_in_vectors()) {
+      EXPECT_EQ(padded % width, 0u) << n;
+      EXPECT_GE(padded, n);
+      EXPECT_LT(padded, n + width) << n;
+    } else {
+      EXPECT_EQ(padded, n);
+    }
+  }
+}
+
 TEST(PackedLanes, EveryShippedControllerMatchesItsScalarEvaluation) {
   for (const std::string& name : gait::ControllerSet::builtin_names()) {
     for (const gait::Controller& c : gait::ControllerSet::builtin(name).controllers) {

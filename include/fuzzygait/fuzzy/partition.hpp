@@ -145,13 +145,18 @@ class PackedPartition {
   }
   // out[i] = evaluate(x0[i], x1[i]) for i < n, bit for bit, in vectors across the lanes (AVX2
   // when the machine has it, chosen once): a crowd's characters through one controller at once.
-  // x1 is not read for a one-input controller (it may then be null). With vectors
-  // (batch_in_vectors()), lanes past a multiple of kVectorLanes are evaluated one by one: a caller
-  // with room may round n up to one. Without, every lane is.
+  // x1 is not read for a one-input controller (it may then be null).
   void evaluate(const double* x0, const double* x1, double* out, std::size_t n) const;
   static constexpr std::size_t kVectorLanes = 4;
   // Whether that batch runs in vector lanes on this machine (else it calls evaluate() in turn).
   static bool batch_in_vectors();
+  // How many lanes to give the batch for n: with vectors, n rounded up to a multiple of
+  // kVectorLanes (the last few lanes would otherwise go one by one, at more cost than a padded
+  // vector whose extra outputs the caller leaves unread), else n. A caller may pass this only
+  // where its arrays have room for it.
+  static std::size_t padded_lanes(std::size_t n) {
+    return batch_in_vectors() ? (n + kVectorLanes - 1) / kVectorLanes * kVectorLanes : n;
+  }
 
  private:
   enum class Shape : std::uint8_t { OneInput, Product, Minimum };

@@ -52,7 +52,6 @@ class Crowd {
   std::vector<Walker> walkers_;
   std::vector<Walker::StepData> steps_;  // a block's
   bool batched_ = false;
-  bool vectors_ = false;  // the controllers' batch runs in vectors on this machine
   double time_step_ = 0.0;
   // Each slot's controller and the metrics it reads. A block's legs take lanes by phase (swing,
   // stance): each metric of each phase's legs, [phase][metric][lane], and each slot's outputs,
