@@ -1,0 +1,160 @@
+// Walks held to recorded bits: a hash of every frame's state and events for walks across the
+// built-in sets, statures, steps, awkward starts, slopes and a kerb, and a crowd. The hashes were
+// recorded by the build that introduced this test (GCC 12, x86-64); any build of the same sources
+// (another compiler, the scalar lane body, a machine without AVX2) must walk the same bits. A
+// change that alters walks on purpose records new hashes and says why in CHANGES.md.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/gait/crowd.hpp"
+#include "fuzzygait/gait/walker.hpp"
+#include "support/walks.hpp"
+
+using namespace fuzzygait;
+
+namespace {
+
+// FNV-1a over 64-bit words.
+struct Hash {
+  std::uint64_t value = 0xcbf29ce484222325ull;
+  void add(std::uint64_t word) {
+    for (int b = 0; b < 8; ++b) {
+      value ^= (word >> (8 * b)) & 0xffu;
+      value *= 0x100000001b3ull;
+    }
+  }
+  void add(double x) { add(std::bit_cast<std::uint64_t>(x)); }
+};
+
+void add_walker(Hash& h, const gait::Walker& w) {
+  const gait::WalkerState& s = w.state();
+  h.add(s.time);
+  h.add(s.pelvis.x);
+  h.add(s.pelvis.y);
+  h.add(s.pelvis_tilt);
+  h.add(static_cast<std::uint64_t>(s.lead + 1));
+  h.add(s.fall_velocity);
+  h.add(static_cast<std::uint64_t>(s.heel_strikes));
+  for (const gait::LegState& l : s.legs) {
+    h.add(static_cast<std::uint64_t>(l.phase));
+    for (const rig::LegAngles& a : {l.angles, l.velocity}) {
+      h.add(a.hip);
+      h.add(a.knee);
+      h.add(a.ankle);
+      h.add(a.toe);
+    }
+    for (double x : {l.anchor.x, l.anchor.y, l.sweep_start, l.sweep_end, l.target_x, l.swing_start,
+                     l.strike_x, l.delta})
+      h.add(x);
+  }
+  for (const gait::EventRecord& e : w.events()) {
+    h.add(e.time);
+    h.add(static_cast<std::uint64_t>(e.side));
+    h.add(static_cast<std::uint64_t>(e.event));
+    h.add(e.where.x);
+    h.add(e.where.y);
+  }
+}
+
+struct GoldenWalk {
+  std::string name;
+  std::string set;
+  double stature;
+  double step;        // metres; 0: halfway between the set's shortest and 0.70 m steps at 1.75 m
+  int ground;         // 0 flat, 1 a 5 deg ramp, 2 a 0.15 m kerb up then down
+  std::int64_t seed;  // -1: the default start
+  std::uint64_t hash;
+};
+
+terrain::Terrain ground_of(int kind) {
+  if (kind == 1) return terrain::Terrain::polyline({{-1e3, 0.0}, {2.0, 0.0}, {50.0, 4.2}});
+  if (kind == 2) {
+    return terrain::Terrain::polyline(
+        {{-1e3, 0.0}, {2.0, 0.0}, {2.001, 0.15}, {4.0, 0.15}, {4.001, 0.0}, {1e3, 0.0}});
+  }
+  return terrain::Terrain::flat();
+}
+
+std::uint64_t walk_hash(const GoldenWalk& g) {
+  const gait::ControllerSet set = gait::ControllerSet::builtin(g.set);
+  const terrain::Terrain ground = ground_of(g.ground);
+  gait::WalkerOptions o;
+  o.segments = rig::segments_from_stature(g.stature);
+  o.step_length = g.step;
+  if (g.seed >= 0) {
+    o.start.random = true;
+    o.start.seed = static_cast<std::uint64_t>(g.seed);
+  }
+  gait::Walker w(set, o, ground);
+  Hash h;
+  for (int frame = 0; frame < 600; ++frame) {  // 10 s at 60 frames a second
+    w.advance(frame % 50 == 7 ? 0.05 : 1.0 / 60.0);
+    add_walker(h, w);
+    if (frame % 60 == 59) w.clear_events();
+  }
+  return h.value;
+}
+
+const std::vector<GoldenWalk>& golden_walks() {
+  static const std::vector<GoldenWalk> walks = {
+      {"default 1.75 m 0.70 m", "default", 1.75, 0.70, 0, -1, 0x11ffd8998951a582},
+      {"default 1.50 m 0.50 m", "default", 1.50, 0.50, 0, -1, 0x5383d3494553847b},
+      {"default 2.00 m 0.85 m", "default", 2.00, 0.85, 0, -1, 0x6e5d087be1d3d696},
+      {"default shortest step", "default", 1.75, 0.43, 0, -1, 0x7681fed986a215b8},
+      {"energetic 1.75 m 0.70 m", "energetic", 1.75, 0.70, 0, -1, 0xb5c2dc39feb9d2eb},
+      {"heavy 1.60 m 0.65 m", "heavy", 1.60, 0.65, 0, -1, 0xff0d53815d05b09},
+      {"cautious 1.90 m 0.80 m", "cautious", 1.90, 0.80, 0, -1, 0xe673d6e3d8c40ab},
+      {"default on a 5 deg ramp", "default", 1.75, 0.70, 1, -1, 0x9fe5ae19f0abebfd},
+      {"default over a kerb", "default", 1.75, 0.70, 2, -1, 0xfa07fa97179726a9},
+      {"heavy over a kerb", "heavy", 1.75, 0.70, 2, -1, 0xc4ab6d8691e59e8a},
+      {"default random start 3", "default", 1.75, 0.70, 0, 3, 0xc635c4210f392e73},
+      {"default random start 17", "default", 1.60, 0.60, 0, 17, 0xdf3b0449fb009a77},
+      {"energetic random start 5", "energetic", 1.75, 0.70, 0, 5, 0x230a1eec0d4ddba5},
+      {"cautious random start 9 on a ramp", "cautious", 1.75, 0.75, 1, 9, 0xe26c6095af24d443},
+  };
+  return walks;
+}
+
+TEST(GoldenWalks, EveryWalkHasTheRecordedBits) {
+  for (const GoldenWalk& g : golden_walks()) {
+    const std::uint64_t hash = walk_hash(g);
+    EXPECT_EQ(hash, g.hash) << g.name << ": 0x" << std::hex << hash;
+  }
+}
+
+TEST(GoldenWalks, ACrowdHasTheRecordedBits) {
+  const gait::ControllerSet& set = test::default_set();
+  const terrain::Terrain ground = ground_of(2);
+  std::vector<gait::WalkerOptions> characters(40);
+  for (std::size_t i = 0; i < characters.size(); ++i) {
+    gait::WalkerOptions& o = characters[i];
+    const double a = static_cast<double>(i % 7) / 6.0;
+    const double b = static_cast<double>(i % 5) / 4.0;
+    o.segments = rig::segments_from_stature(1.5 + 0.5 * a);
+    const double shortest = gait::Walker::min_step_length(set, o.segments);
+    const double longest = gait::Walker::max_step_length(o.segments);
+    o.step_length = shortest + (longest - shortest) * (0.1 + 0.8 * b);
+    o.start.warm_up = 3.0 + 0.1 * static_cast<double>(i % 11);
+    if (i % 6 == 1) {
+      o.start.random = true;
+      o.start.seed = i;
+    }
+  }
+  gait::Crowd crowd(set, ground, characters);
+  Hash h;
+  for (int frame = 0; frame < 480; ++frame) {
+    crowd.advance(1.0 / 60.0);
+    for (std::size_t i = 0; i < crowd.size(); ++i)
+      add_walker(h, crowd[i]);
+    crowd.clear_events();
+  }
+  constexpr std::uint64_t kRecorded = 0xffd1dd06a1e27d42;
+  EXPECT_EQ(h.value, kRecorded) << "0x" << std::hex << h.value;
+}
+
+}  // namespace
