@@ -33,17 +33,33 @@ function(fuzzygait_configure_target target)
   endif()
 endfunction()
 
-# A library part of fuzzygait (one per folder under src/), installed and exported.
-function(fuzzygait_add_library name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
-  add_library(fuzzygait_${name} STATIC ${ARG_SOURCES})
-  add_library(fuzzygait::${name} ALIAS fuzzygait_${name})
-  target_include_directories(fuzzygait_${name} PUBLIC
+# A fuzzygait library (runtime, offline) or tool library (plot): static, position-independent,
+# public headers under include/, the project's internal headers (src/, as "runtime/...") private.
+function(fuzzygait_add_library target)
+  cmake_parse_arguments(ARG "" "EXPORT_NAME" "SOURCES" ${ARGN})
+  add_library(${target} STATIC ${ARG_SOURCES})
+  target_include_directories(${target} PUBLIC
     $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
-  target_link_libraries(fuzzygait_${name} PUBLIC ${ARG_DEPENDS})
-  set_target_properties(fuzzygait_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON
-                        EXPORT_NAME ${name})
-  fuzzygait_configure_target(fuzzygait_${name})
-  set_property(GLOBAL APPEND PROPERTY FUZZYGAIT_LIBRARIES fuzzygait_${name})
+  target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR}/src ${CMAKE_CURRENT_BINARY_DIR})
+  set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  if(ARG_EXPORT_NAME)
+    set_target_properties(${target} PROPERTIES EXPORT_NAME ${ARG_EXPORT_NAME})
+    add_library(fuzzygait::${ARG_EXPORT_NAME} ALIAS ${target})
+  endif()
+  fuzzygait_configure_target(${target})
+endfunction()
+
+# Text files compiled into a library as string literals (cmake/EmbedFiles.cmake), so it works
+# without finding its data at run time. `header` is the include path of the declaring header.
+function(fuzzygait_embed output header namespace source_dir)
+  set(globs ${ARGN})
+  list(TRANSFORM globs PREPEND "${source_dir}/" OUTPUT_VARIABLE absolute)
+  file(GLOB inputs CONFIGURE_DEPENDS ${absolute})
+  string(REPLACE ";" "\\;" globs_arg "${globs}")
+  add_custom_command(OUTPUT ${output}
+    COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${source_dir} "-DGLOBS=${globs_arg}" -DOUTPUT=${output}
+            -DHEADER=${header} -DNAMESPACE=${namespace} -P ${PROJECT_SOURCE_DIR}/cmake/EmbedFiles.cmake
+    DEPENDS ${inputs} ${PROJECT_SOURCE_DIR}/cmake/EmbedFiles.cmake
+    COMMENT "Embedding ${header}")
 endfunction()

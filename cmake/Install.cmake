@@ -1,23 +1,40 @@
-# Installs the library, its public headers and a CMake package: find_package(fuzzygait).
+# Installs the two libraries as components of one CMake package, the program and the shipped
+# controller sets:
+#   find_package(fuzzygait COMPONENTS runtime)           fuzzygait::runtime, no dependencies
+#   find_package(fuzzygait COMPONENTS runtime offline)   also fuzzygait::offline
+#   cmake --install build --component runtime            the runtime alone
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
+set(package_dir ${CMAKE_INSTALL_LIBDIR}/cmake/fuzzygait)
 
-get_property(fuzzygait_libraries GLOBAL PROPERTY FUZZYGAIT_LIBRARIES)
-install(TARGETS fuzzygait ${fuzzygait_libraries}
-        EXPORT fuzzygaitTargets
-        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+install(TARGETS fuzzygait_runtime EXPORT fuzzygaitRuntimeTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(TARGETS fuzzygait_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(DIRECTORY include/fuzzygait DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY controllers/ DESTINATION ${CMAKE_INSTALL_DATADIR}/fuzzygait/controllers)
-install(EXPORT fuzzygaitTargets NAMESPACE fuzzygait::
-        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/fuzzygait)
+foreach(part IN ITEMS fuzzy rig terrain gait)
+  install(DIRECTORY include/fuzzygait/${part} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fuzzygait
+          COMPONENT runtime)
+endforeach()
+install(EXPORT fuzzygaitRuntimeTargets NAMESPACE fuzzygait:: DESTINATION ${package_dir}
+        COMPONENT runtime)
+
+install(TARGETS fuzzygait_offline EXPORT fuzzygaitOfflineTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT offline
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+foreach(part IN ITEMS eval learn io)
+  install(DIRECTORY include/fuzzygait/${part} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fuzzygait
+          COMPONENT offline)
+endforeach()
+install(EXPORT fuzzygaitOfflineTargets NAMESPACE fuzzygait:: DESTINATION ${package_dir}
+        COMPONENT offline)
+
+install(TARGETS fuzzygait_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
+install(DIRECTORY controllers/ DESTINATION ${CMAKE_INSTALL_DATADIR}/fuzzygait/controllers
+        COMPONENT tools)
+
 configure_package_config_file(cmake/fuzzygaitConfig.cmake.in
-  ${CMAKE_CURRENT_BINARY_DIR}/fuzzygaitConfig.cmake
-  INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/fuzzygait)
+  ${CMAKE_CURRENT_BINARY_DIR}/fuzzygaitConfig.cmake INSTALL_DESTINATION ${package_dir})
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/fuzzygaitConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/fuzzygaitConfig.cmake
               ${CMAKE_CURRENT_BINARY_DIR}/fuzzygaitConfigVersion.cmake
-        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/fuzzygait)
+        DESTINATION ${package_dir} COMPONENT runtime)

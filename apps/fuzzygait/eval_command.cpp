@@ -9,11 +9,12 @@
 #include <string>
 
 #include "commands.hpp"
-#include "fuzzygait/gait/evaluation.hpp"
+#include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/io/files.hpp"
 #include "fuzzygait/io/normative.hpp"
-#include "fuzzygait/io/svg.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
+#include "fuzzygait/plot/svg.hpp"
+#include "runtime/common/format.hpp"
 
 namespace fuzzygait::cli {
 namespace {
@@ -48,10 +49,10 @@ void add_eval_command(CLI::App& app) {
   eval->callback([o]() {
     if (o->step && !(*o->step > 0.0 && *o->step <= 10.0)) {
       throw std::invalid_argument("--step must be a step length above 0 and at most 10 m, got " +
-                                  io::svg::format_number(*o->step, 6));
+                                  common::number_text(*o->step));
     }
     std::ifstream in = open_or_throw(o->csv);
-    const gait::Motion motion = io::read_walk_csv(in, o->csv);
+    const eval::Motion motion = io::read_walk_csv(in, o->csv);
     std::string terrain_path = o->terrain;
     if (terrain_path.empty()) {
       std::filesystem::path guess(o->csv);
@@ -59,14 +60,14 @@ void add_eval_command(CLI::App& app) {
       if (std::filesystem::exists(guess)) terrain_path = guess.string();
     }
     const terrain::Terrain ground = load_terrain(terrain_path);
-    const gait::Normative reference = io::load_normative(o->reference);
-    const gait::GaitReport report = gait::evaluate(motion, ground, &reference, o->step);
-    const std::string json = gait::to_json(report);
+    const eval::Normative reference = io::load_normative(o->reference);
+    const eval::GaitReport report = eval::evaluate(motion, ground, &reference, o->step);
+    const std::string json = eval::to_json(report);
     if (o->json == "-") {
       std::cout << json << "\n";
       return;
     }
-    std::cout << "reference: " << reference.name << "\n" << gait::to_text(report);
+    std::cout << "reference: " << reference.name << "\n" << eval::to_text(report);
     if (!o->json.empty()) {
       io::write_file(o->json, json + "\n");
     }

@@ -5,7 +5,7 @@
 
 #include "commands.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
-#include "fuzzygait/io/fuzzy_plot.hpp"
+#include "fuzzygait/plot/fuzzy_plot.hpp"
 
 namespace fuzzygait::cli {
 
@@ -13,7 +13,7 @@ void add_fuzzy_plot_command(CLI::App& fuzzy) {
   struct Options {
     std::string engine_path;
     std::string output_path;
-    io::EnginePlotOptions plot;
+    plot::EnginePlotOptions plot;
   };
   auto options = std::make_shared<Options>();
   CLI::App* plot = fuzzy.add_subcommand(
@@ -38,8 +38,8 @@ void add_fuzzy_plot_command(CLI::App& fuzzy) {
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
   plot->callback([options]() {
-    const io::svg::Figure figure =
-        io::plot_engine(fuzzy::read_fll_file(options->engine_path), options->plot);
+    const plot::svg::Figure figure =
+        plot::plot_engine(fuzzy::read_fll_file(options->engine_path), options->plot);
     if (options->output_path.empty() || options->output_path == "-") {
       std::cout << figure.svg();
     } else {

@@ -89,10 +89,10 @@ void add_tune_command(CLI::App& app) {
                                           ? gait::ControllerSet::builtin(o->style)
                                           : gait::ControllerSet::load(o->controllers);
     learn::TuneOptions& options = o->tune;
-    const gait::Normative reference = io::load_normative(o->reference);
+    const eval::Normative reference = io::load_normative(o->reference);
     // The slow and fast groups of the same study, for walks with shorter and longer steps.
-    std::optional<gait::Normative> slow;
-    std::optional<gait::Normative> fast;
+    std::optional<eval::Normative> slow;
+    std::optional<eval::Normative> fast;
     if (o->grid) {
       slow = io::load_normative(o->slower);
       fast = io::load_normative(o->faster);

@@ -8,19 +8,20 @@
 #include <stdexcept>
 
 #include "commands.hpp"
-#include "fuzzygait/gait/evaluation.hpp"
-#include "fuzzygait/gait/motion.hpp"
+#include "fuzzygait/eval/evaluation.hpp"
+#include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/io/bvh.hpp"
 #include "fuzzygait/io/files.hpp"
 #include "fuzzygait/io/normative.hpp"
-#include "fuzzygait/io/svg.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
-#include "fuzzygait/io/walk_plots.hpp"
+#include "fuzzygait/plot/svg.hpp"
+#include "fuzzygait/plot/walk_plots.hpp"
+#include "runtime/common/format.hpp"
 
 namespace fuzzygait::cli {
 namespace {
 
-namespace svg = io::svg;
+namespace svg = plot::svg;
 
 struct WalkOptions {
   double step = 0.70;
@@ -61,8 +62,8 @@ gait::StartPose parse_start(const std::string& text) {
 
 // The default set meets the contact bounds over its step range (README, "Step lengths"); a style
 // or a set of one's own may not, and the files are written all the same, so the reader is told.
-void warn_about_contact(const gait::GaitReport& report) {
-  const std::vector<std::string> missed = gait::missed_contact_bounds(report);
+void warn_about_contact(const eval::GaitReport& report) {
+  const std::vector<std::string> missed = eval::missed_contact_bounds(report);
   if (missed.empty()) return;
   std::cerr << "fuzzygait: warning: this walk misses the contact bounds: ";
   for (std::size_t i = 0; i < missed.size(); ++i)
@@ -101,15 +102,15 @@ void add_walk_command(CLI::App& app) {
     // CLI11's range checks let NaN through (every comparison with it is false).
     if (walk->count("--duration") > 0 && !(o->duration > 0.0 && o->duration <= 36000.0)) {
       throw std::invalid_argument("--duration must be between 0 and 36000 s, got " +
-                                  svg::format_number(o->duration, 6));
+                                  common::number_text(o->duration));
     }
     if (!(o->fps >= 10.0 && o->fps <= 2000.0)) {
       throw std::invalid_argument("--fps must be between 10 and 2000, got " +
-                                  svg::format_number(o->fps, 6));
+                                  common::number_text(o->fps));
     }
     check_output_prefix(o->prefix, "-o");
     // Everything that can be refused is refused before any file is written.
-    const gait::Normative reference = io::load_normative(o->reference);
+    const eval::Normative reference = io::load_normative(o->reference);
     const gait::ControllerSet set = o->controllers.empty()
                                         ? gait::ControllerSet::builtin(o->style)
                                         : gait::ControllerSet::load(o->controllers);
@@ -125,8 +126,8 @@ void add_walk_command(CLI::App& app) {
     options.start = parse_start(o->start_pose);
     const terrain::Terrain ground = terrain::Terrain::flat();
     gait::Walker walker(set, options, ground);
-    const gait::Motion motion = o->duration > 0.0 ? gait::record(walker, o->duration, o->fps)
-                                                  : gait::record_cycles(walker, o->cycles, o->fps);
+    const eval::Motion motion = o->duration > 0.0 ? eval::record(walker, o->duration, o->fps)
+                                                  : eval::record_cycles(walker, o->cycles, o->fps);
     const std::filesystem::path prefix(o->prefix);
     if (prefix.has_parent_path()) std::filesystem::create_directories(prefix.parent_path());
     io::write_file(o->prefix + ".csv",
@@ -143,18 +144,18 @@ void add_walk_command(CLI::App& app) {
     std::vector<std::string> written = {o->prefix + ".csv", o->prefix + ".terrain.csv",
                                         o->prefix + ".bvh"};
     try {
-      const gait::GaitReport report = gait::evaluate(motion, ground, &reference, o->step);
-      std::cout << "against " << reference.name << ":\n" << gait::to_text(report);
+      const eval::GaitReport report = eval::evaluate(motion, ground, &reference, o->step);
+      std::cout << "against " << reference.name << ":\n" << eval::to_text(report);
       warn_about_contact(report);
-      io::plot_gait_curves(report, &reference, {.title = "fuzzygait walk, " + set.name})
+      plot::plot_gait_curves(report, &reference, {.title = "fuzzygait walk, " + set.name})
           .save(o->prefix + ".svg");
       written.push_back(o->prefix + ".svg");
     } catch (const std::invalid_argument& e) {
       std::cout << "not measured, no curves: " << e.what() << "\n";
     }
     try {
-      const svg::Figure animation = io::plot_walk_animation(motion, ground);
-      const svg::Figure filmstrip = io::plot_filmstrip(motion, ground);
+      const svg::Figure animation = plot::plot_walk_animation(motion, ground);
+      const svg::Figure filmstrip = plot::plot_filmstrip(motion, ground);
       io::write_file(o->prefix + ".poses.svg", svg::stack_figures({&animation, &filmstrip}));
       written.push_back(o->prefix + ".poses.svg");
     } catch (const std::invalid_argument& e) {

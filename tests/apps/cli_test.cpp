@@ -47,7 +47,7 @@ TEST(WalkCommand, WritesEveryFileAndTheSummary) {
     EXPECT_TRUE(std::filesystem::exists(prefix.string() + ext)) << ext;
   }
   std::ifstream csv(prefix.string() + ".csv");
-  const gait::Motion m = io::read_walk_csv(csv, "short.csv");
+  const eval::Motion m = io::read_walk_csv(csv, "short.csv");
   EXPECT_NEAR(m.fps, 60.0, 1e-3);
   // The options took effect: a 1.6 m body (thigh 0.245 H).
   EXPECT_NEAR(m.segments.thigh, 0.245 * 1.6, 1e-5);

@@ -12,9 +12,9 @@
 #include <tuple>
 #include <vector>
 
-#include "fuzzygait/gait/evaluation.hpp"
-#include "fuzzygait/gait/motion.hpp"
-#include "fuzzygait/gait/recovery.hpp"
+#include "fuzzygait/eval/evaluation.hpp"
+#include "fuzzygait/eval/motion.hpp"
+#include "fuzzygait/eval/recovery.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "support/walks.hpp"
 
@@ -25,15 +25,15 @@ namespace {
 using test::default_set;
 using test::make_walker;
 
-gait::GaitReport walk(double step, double stature, const gait::Normative* reference,
+eval::GaitReport walk(double step, double stature, const eval::Normative* reference,
                       const gait::ControllerSet& set = default_set(), double seconds = 13.0) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   gait::Walker walker = make_walker(ground, step, stature, {}, set);
-  const gait::Motion motion = gait::record(walker, seconds, 120.0);
-  return gait::evaluate(motion, ground, reference, step);
+  const eval::Motion motion = eval::record(walker, seconds, 120.0);
+  return eval::evaluate(motion, ground, reference, step);
 }
 
-void expect_sound_contact(const gait::GaitReport& r, const std::string& label) {
+void expect_sound_contact(const eval::GaitReport& r, const std::string& label) {
   EXPECT_LT(r.max_slip, 0.001) << label;
   EXPECT_LT(r.max_penetration, 0.001) << label;
   EXPECT_GE(r.min_toe_clearance, 0.005) << label;
@@ -43,8 +43,8 @@ void expect_sound_contact(const gait::GaitReport& r, const std::string& label) {
 }
 
 TEST(Acceptance, DefaultWalkMatchesNormalGait) {
-  const gait::Normative reference = io::load_normative("schwartz2008_free");
-  const gait::GaitReport r = walk(0.70, 1.75, &reference);
+  const eval::Normative reference = io::load_normative("schwartz2008_free");
+  const eval::GaitReport r = walk(0.70, 1.75, &reference);
   ASSERT_TRUE(r.thigh_score.has_value());
   ASSERT_TRUE(r.knee_score.has_value());
   ASSERT_TRUE(r.ankle_score.has_value());
@@ -64,7 +64,7 @@ TEST(Acceptance, DefaultWalkMatchesNormalGait) {
 }
 
 TEST(Acceptance, NoVelocityJumpAtPhaseSwitches) {
-  const gait::GaitReport r = walk(0.70, 1.75, nullptr);
+  const eval::GaitReport r = walk(0.70, 1.75, nullptr);
   EXPECT_GE(r.cycles, 8);
   // Where a phase hands a joint to another controller (or to the ground), its velocity changes
   // from one frame to the next by at most 1.5 times the typical change elsewhere in the walk
@@ -107,7 +107,7 @@ TEST(Acceptance, StylesHoldTogetherFromTheirShortestStep) {
       const rig::Segments segments = rig::segments_from_stature(stature);
       const double shortest = gait::Walker::min_step_length(set, segments);
       for (double step : {shortest, 0.5 * (shortest + gait::Walker::max_step_length(segments))}) {
-        const gait::GaitReport r = walk(step, stature, nullptr, set, 20.0);
+        const eval::GaitReport r = walk(step, stature, nullptr, set, 20.0);
         const std::string label = std::string(name) + " stature " + std::to_string(stature) +
                                   " step " + std::to_string(step);
         EXPECT_LT(r.max_slip, 0.005) << label;
@@ -121,9 +121,9 @@ TEST(Acceptance, StylesHoldTogetherFromTheirShortestStep) {
 
 TEST(Acceptance, CurvesChangeWithStepLengthAsPeoplesDo) {
   // Schwartz et al.: thigh range and peak knee flexion grow from slow to fast walking.
-  const gait::GaitReport short_steps = walk(0.55, 1.75, nullptr);
-  const gait::GaitReport normal = walk(0.70, 1.75, nullptr);
-  const gait::GaitReport long_steps = walk(0.85, 1.75, nullptr);
+  const eval::GaitReport short_steps = walk(0.55, 1.75, nullptr);
+  const eval::GaitReport normal = walk(0.70, 1.75, nullptr);
+  const eval::GaitReport long_steps = walk(0.85, 1.75, nullptr);
   EXPECT_LT(short_steps.thigh_range, normal.thigh_range);
   EXPECT_LT(normal.thigh_range, long_steps.thigh_range);
   EXPECT_LT(short_steps.knee_peak, normal.knee_peak);
@@ -144,7 +144,7 @@ std::array<double, 8> leg_angles(const std::array<rig::LegAngles, 2>& legs) {
 }
 
 // 500 seeded random starts within the joint limits, checked at every time step, not only every
-// frame (what happens between frames shows in a game too; gait::walk_from_random_start): no NaN,
+// frame (what happens between frames shows in a game too; eval::walk_from_random_start): no NaN,
 // nothing below the ground, joints within their limits, no pop of the pelvis, and steady steps of
 // the commanded length from the fourth step on (the first touchdown is not a step).
 TEST(Acceptance, RecoversFromAwkwardStarts) {
@@ -166,8 +166,8 @@ TEST(Acceptance, RecoversFromAwkwardStarts) {
   int outside_limits = 0;
   int unsettled = 0;
   for (std::uint64_t seed = 0; seed < kSeeds; ++seed) {
-    const gait::RecoveryReport r =
-        gait::walk_from_random_start(default_set(), options, seed, ground);
+    const eval::RecoveryReport r =
+        eval::walk_from_random_start(default_set(), options, seed, ground);
     // The start itself, before the first step: random angles within the joint limits.
     const std::array<double, 8> angles = leg_angles(r.start);
     starts.insert(angles);
@@ -207,7 +207,7 @@ TEST(Acceptance, StylesStayAboveTheGroundFromAwkwardStarts) {
     const gait::WalkerOptions options;
     int unsettled = 0;
     for (std::uint64_t seed = 0; seed < 500; ++seed) {
-      const gait::RecoveryReport r = gait::walk_from_random_start(set, options, seed, ground);
+      const eval::RecoveryReport r = eval::walk_from_random_start(set, options, seed, ground);
       ASSERT_TRUE(r.sound()) << name << " seed " << seed << ": " << r.failure;
       EXPECT_LT(r.largest_pelvis_move, 0.1) << name << " seed " << seed << ", m in a time step";
       // The slowest style takes 11 steps in 8 s; a walker stuck in a crouch took one.
@@ -233,7 +233,7 @@ struct StyleFigures {
 StyleFigures style(const std::string& name) {
   const gait::ControllerSet set = gait::ControllerSet::builtin(name);
   // 18 s: at least 10 cycles for the slow styles too (cautious, 1.4 s a cycle: 11).
-  const gait::GaitReport r = walk(0.70, 1.75, nullptr, set, 18.0);
+  const eval::GaitReport r = walk(0.70, 1.75, nullptr, set, 18.0);
   EXPECT_GE(r.cycles, 10) << name;
   EXPECT_LT(r.max_slip, 0.001) << name;
   EXPECT_LT(r.max_penetration, 0.001) << name;

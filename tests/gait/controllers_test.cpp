@@ -101,12 +101,13 @@ TEST(ControllerSet, ErrorsNameTheFileAndTheProblem) {
   std::string name = manifest;
   const std::size_t named = name.find("\"name\"");
   name.replace(named, name.find(',', named) - named, "\"name\": 5");
-  EXPECT_THAT(error_of(name, files), HasSubstr("set/manifest.json: 'name' must be a string"));
+  EXPECT_THAT(error_of(name, files),
+              HasSubstr("set/manifest.json:2: 'name' must be a string, found a number"));
   std::string slot = manifest;
   const std::size_t hip = slot.find("\"swing_hip\"");
   slot.replace(hip, slot.find(',', hip) - hip, "\"swing_hip\": 5");
   EXPECT_THAT(error_of(slot, files),
-              HasSubstr("set/manifest.json: controller 'swing_hip' must name an FLL file"));
+              HasSubstr("set/manifest.json:9: controller 'swing_hip' must name an FLL file"));
   std::string shortest = manifest;
   const std::size_t at = shortest.find("\"shortest_step_leg_lengths\"");
   shortest.replace(at, shortest.find(',', at) - at, "\"shortest_step_leg_lengths\": 0");
@@ -125,7 +126,8 @@ TEST(ControllerSet, ErrorsNameTheFileAndTheProblem) {
                 ": term 'fast' parameter 'value' must be a finite number here, found 'nan'"));
   std::string huge = manifest;
   huge.replace(huge.find("\"inertia_s\""), 11, "\"inertia_s\": 1e400, \"x\"");
-  EXPECT_THAT(error_of(huge, files), HasSubstr("set/manifest.json: "));
+  EXPECT_THAT(error_of(huge, files),
+              HasSubstr("set/manifest.json:4:16: the number 1e400 is beyond what a double holds"));
 }
 
 TEST(ControllerSet, MetricInputsAreCheckedByName) {

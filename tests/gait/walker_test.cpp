@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/fuzzy/evaluator.hpp"
-#include "fuzzygait/gait/motion.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "support/allocation_counter.hpp"
 #include "support/walks.hpp"

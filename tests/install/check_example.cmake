@@ -1,27 +1,89 @@
-# Installs the fuzzygait build into a scratch prefix, then configures, builds and runs the
-# game-side example against it with find_package(fuzzygait), as a user would.
+# Installs the runtime component of the fuzzygait build alone into a scratch prefix, then
+# configures, builds and runs the game-side example against it with
+# find_package(fuzzygait COMPONENTS runtime), as a game would; and checks that neither the
+# installed runtime nor the example links any library but the C++ standard library's. Then the
+# whole package: find_package(fuzzygait COMPONENTS offline) builds a program that records a walk.
 # cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... -P check_example.cmake
 file(REMOVE_RECURSE "${WORK_DIR}")
-execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/prefix"
-                RESULT_VARIABLE result OUTPUT_QUIET)
-if(NOT result EQUAL 0)
-  message(FATAL_ERROR "cmake --install failed (${result})")
+set(prefix "${WORK_DIR}/runtime")
+
+function(run)  # COMMAND... : fails the test with the command's output when it fails
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "failed (${result}): ${ARGN}\n${out}\n${err}")
+  endif()
+  set(run_output "${out}" PARENT_SCOPE)
+endfunction()
+
+run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}" --component runtime)
+# The runtime alone: its headers and its library, nothing of the tools.
+file(GLOB_RECURSE installed RELATIVE "${prefix}" "${prefix}/*")
+foreach(file IN LISTS installed)
+  if(file MATCHES "fuzzygait/(eval|learn|io|plot)/|offline|bin/")
+    message(FATAL_ERROR "the runtime component installed a file of the tools: ${file}")
+  endif()
+endforeach()
+file(GLOB targets_file "${prefix}/lib*/cmake/fuzzygait/fuzzygaitRuntimeTargets.cmake")
+file(READ "${targets_file}" targets)
+if(targets MATCHES "INTERFACE_LINK_LIBRARIES")
+  message(FATAL_ERROR "fuzzygait::runtime asks its users to link more libraries:\n${targets}")
 endif()
-execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/walk_in_game"
-                        -B "${WORK_DIR}/build" -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release
-                        "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix"
-                RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT result EQUAL 0)
-  message(FATAL_ERROR "configuring the example failed:\n${out}\n${err}")
+
+run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/walk_in_game" -B "${WORK_DIR}/example"
+    -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}")
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/example" --verbose)
+# The link line: the example's object, the runtime's archive, nothing else.
+string(REGEX MATCH "[^\n]*-o walk_in_game[^\n]*" link_line "${run_output}")
+string(REGEX MATCHALL "[^ ]+\\.(a|so)|-l[^ ]+" linked "${link_line}")
+if(NOT linked MATCHES "libfuzzygait_runtime\\.a" OR linked MATCHES ";")
+  message(FATAL_ERROR "the example links more than the runtime: ${linked}\n${link_line}")
 endif()
-execute_process(COMMAND ${CMAKE_COMMAND} --build "${WORK_DIR}/build"
-                RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT result EQUAL 0)
-  message(FATAL_ERROR "building the example failed:\n${out}\n${err}")
+# The shared libraries the example needs at run time: the C and C++ standard libraries only.
+find_program(READELF readelf)
+if(READELF)
+  run(${READELF} -d "${WORK_DIR}/example/walk_in_game")
+  string(REGEX MATCHALL "Shared library: \\[[^]]+\\]" needed "${run_output}")
+  foreach(library IN LISTS needed)
+    if(NOT library MATCHES "\\[(libstdc\\+\\+|libm|libgcc_s|libc|ld-linux[^]]*)\\.so")
+      message(FATAL_ERROR "the example needs ${library}: the runtime must need the C++ standard "
+                          "library only")
+    endif()
+  endforeach()
 endif()
-execute_process(COMMAND "${WORK_DIR}/build/walk_in_game" RESULT_VARIABLE result
-                OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT result EQUAL 0 OR NOT out MATCHES "left foot planted" OR NOT out MATCHES "t= 9")
-  message(FATAL_ERROR "the example did not walk (${result}):\n${out}\n${err}")
+run("${WORK_DIR}/example/walk_in_game")
+if(NOT run_output MATCHES "left foot planted" OR NOT run_output MATCHES "t= 9")
+  message(FATAL_ERROR "the example did not walk:\n${run_output}")
 endif()
-message(STATUS "the installed package builds and runs the example:\n${out}")
+message(STATUS "the installed runtime builds and runs the example, linking ${linked}:\n"
+               "${link_line}\n${run_output}")
+
+# The offline component: a program that records a walk and measures it.
+run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/all")
+file(WRITE "${WORK_DIR}/offline/CMakeLists.txt" [=[
+cmake_minimum_required(VERSION 3.25)
+project(offline_user LANGUAGES CXX)
+set(CMAKE_CXX_STANDARD 20)
+find_package(fuzzygait 0.1 REQUIRED COMPONENTS offline)
+add_executable(offline_user main.cpp)
+target_link_libraries(offline_user PRIVATE fuzzygait::offline)
+]=])
+file(WRITE "${WORK_DIR}/offline/main.cpp" [=[
+#include <fuzzygait/eval/evaluation.hpp>
+#include <fuzzygait/eval/motion.hpp>
+#include <cstdio>
+int main() {
+  using namespace fuzzygait;
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::Walker walker(set, gait::WalkerOptions{}, ground);
+  const eval::Motion motion = eval::record_cycles(walker, 3, 120.0);
+  const eval::GaitReport report = eval::evaluate(motion, ground);
+  std::printf("cadence %.1f\n", report.cadence);
+  return report.cadence > 80.0 ? 0 : 1;
+}
+]=])
+run(${CMAKE_COMMAND} -S "${WORK_DIR}/offline" -B "${WORK_DIR}/offline/build" -G "${GENERATOR}"
+    -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${WORK_DIR}/all")
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/offline/build")
+run("${WORK_DIR}/offline/build/offline_user")
+message(STATUS "the offline component builds a program that measures a walk: ${run_output}")

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/gait/controllers.hpp"
-#include "fuzzygait/gait/motion.hpp"
 #include "fuzzygait/io/bvh.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
@@ -27,7 +27,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-using fuzzygait::gait::Motion;
+using fuzzygait::eval::Motion;
 using fuzzygait::rig::degrees;
 using fuzzygait::test::read_text;
 
@@ -50,7 +50,7 @@ const Walk& walk() {
     const auto ground = fuzzygait::terrain::Terrain::flat();
     fuzzygait::gait::Walker walker(controllers, fuzzygait::gait::WalkerOptions{}, ground);
     Walk made;
-    made.motion = fuzzygait::gait::record(walker, 10.0, 120.0);
+    made.motion = fuzzygait::eval::record(walker, 10.0, 120.0);
     const fs::path dir = fs::path(FUZZYGAIT_BVH_IMPORT_DIR) /
                          ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::create_directories(dir);
@@ -131,7 +131,7 @@ void expect_matches_walk(const Table& seen, const std::string& importer) {
   };
   const char* sides[] = {"l", "r"};
   for (std::size_t f = 0; f < m.frames.size(); ++f) {
-    const fuzzygait::gait::Frame& frame = m.frames[f];
+    const fuzzygait::eval::Frame& frame = m.frames[f];
     const double tilt = degrees(frame.pose.pelvis_tilt);
     const auto angle_is = [&](const std::string& column, double expected) {
       note(angle, std::abs(std::remainder(seen.at(f, column) - expected, 360.0)), column, f);

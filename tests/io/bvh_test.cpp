@@ -16,15 +16,15 @@
 #include <string>
 #include <vector>
 
+#include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/gait/controllers.hpp"
-#include "fuzzygait/gait/motion.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
 
 namespace {
 
-using fuzzygait::gait::Frame;
-using fuzzygait::gait::Motion;
+using fuzzygait::eval::Frame;
+using fuzzygait::eval::Motion;
 using fuzzygait::io::BvhOptions;
 using fuzzygait::io::write_bvh;
 using fuzzygait::rig::degrees;
@@ -236,7 +236,7 @@ Motion walk(double seconds, double fps) {
       fuzzygait::gait::ControllerSet::builtin("default");
   static const fuzzygait::terrain::Terrain ground = fuzzygait::terrain::Terrain::flat();
   fuzzygait::gait::Walker walker(controllers, fuzzygait::gait::WalkerOptions{}, ground);
-  return fuzzygait::gait::record(walker, seconds, fps);
+  return fuzzygait::eval::record(walker, seconds, fps);
 }
 
 // A motion made of the given poses, with the rig's own joint points.

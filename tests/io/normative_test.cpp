@@ -19,7 +19,7 @@ const std::string kHeader =
     "percent,hip_mean,hip_sd,knee_mean,knee_sd,ankle_mean,ankle_sd,pelvis_tilt_mean,"
     "pelvis_tilt_sd\n";
 
-gait::Normative read(const std::string& text) {
+eval::Normative read(const std::string& text) {
   std::istringstream in(text);
   return io::read_normative_csv(in, "ref.csv");
 }
@@ -34,7 +34,7 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(NormativeCsv, ResamplesOntoTheCycleGrid) {
-  const gait::Normative n = read(kHeader +
+  const eval::Normative n = read(kHeader +
                                  "0,30,5,0,4,0,3,10,2\n"
                                  "50,-10,5,20,4,10,3,12,2\n"
                                  "100,30,7,0,6,0,5,10,4\n");
@@ -68,7 +68,7 @@ TEST(NormativeCsv, BadFilesNameTheLineAndTheColumn) {
 TEST(NormativeCsv, EveryBuiltInReferenceLoads) {
   ASSERT_EQ(io::builtin_normative_names().size(), 5u);
   for (const std::string& name : io::builtin_normative_names()) {
-    const gait::Normative n = io::load_normative(name);
+    const eval::Normative n = io::load_normative(name);
     EXPECT_EQ(n.name, name);
     EXPECT_GT(n.knee.mean[36], 40.0) << name << ": swing knee flexion at 72 %";
   }

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
-#include "fuzzygait/gait/motion.hpp"
 #include "support/walks.hpp"
 
 namespace fuzzygait {
@@ -18,12 +18,12 @@ namespace {
 
 using ::testing::HasSubstr;
 
-gait::Motion short_walk(const terrain::Terrain& ground) {
+eval::Motion short_walk(const terrain::Terrain& ground) {
   gait::Walker walker = test::make_walker(ground);
-  return gait::record(walker, 1.0, 60.0);
+  return eval::record(walker, 1.0, 60.0);
 }
 
-std::string csv_of(const gait::Motion& m) {
+std::string csv_of(const eval::Motion& m) {
   std::ostringstream out;
   io::write_walk_csv(out, m);
   return out.str();
@@ -61,15 +61,15 @@ TEST(WalkCsv, HeaderHasTheContractsColumnsInOrder) {
 
 TEST(WalkCsv, ReadsBackWhatItWrote) {
   const terrain::Terrain ground = terrain::Terrain::flat();
-  const gait::Motion m = short_walk(ground);
+  const eval::Motion m = short_walk(ground);
   std::istringstream in(csv_of(m));
-  const gait::Motion back = io::read_walk_csv(in, "walk.csv");
+  const eval::Motion back = io::read_walk_csv(in, "walk.csv");
   ASSERT_EQ(back.frames.size(), m.frames.size());
   EXPECT_NEAR(back.fps, 60.0, 1e-3);
   // Angles are written to 1e-4 degrees, positions and time to 1e-6 (m, s).
   for (std::size_t i = 0; i < m.frames.size(); ++i) {
-    const gait::Frame& a = m.frames[i];
-    const gait::Frame& b = back.frames[i];
+    const eval::Frame& a = m.frames[i];
+    const eval::Frame& b = back.frames[i];
     EXPECT_NEAR(a.time, b.time, 5e-7);
     EXPECT_NEAR(a.pose.pelvis.x, b.pose.pelvis.x, 5e-7);
     EXPECT_NEAR(a.pose.pelvis.y, b.pose.pelvis.y, 5e-7);

@@ -173,9 +173,9 @@ TEST(WalkCost, WordsCostSteeplyPastTheShippedSetsBound) {
 }
 
 TEST(WalkCost, TheGridWalksTheWholeAcceptanceGrid) {
-  const gait::Normative free = io::load_normative("schwartz2008_free");
-  const gait::Normative slow = io::load_normative("schwartz2008_slow");
-  const gait::Normative fast = io::load_normative("schwartz2008_fast");
+  const eval::Normative free = io::load_normative("schwartz2008_free");
+  const eval::Normative slow = io::load_normative("schwartz2008_slow");
+  const eval::Normative fast = io::load_normative("schwartz2008_fast");
   const std::vector<learn::WalkCondition> grid = learn::grid_conditions(free, slow, fast);
   std::set<std::pair<double, double>> walked;
   for (const learn::WalkCondition& c : grid)
@@ -192,7 +192,7 @@ TEST(WalkCost, TheGridWalksTheWholeAcceptanceGrid) {
 }
 
 TEST(WalkCost, TheAccelerationLimitCostsOnlyWhenSet) {
-  const gait::Normative free = io::load_normative("schwartz2008_free");
+  const eval::Normative free = io::load_normative("schwartz2008_free");
   learn::TuneOptions o;
   o.conditions = {learn::main_condition(free)};
   std::string report;
@@ -210,7 +210,7 @@ TEST(WalkCost, TheAccelerationLimitCostsOnlyWhenSet) {
 
 // A tune of a few generations on the main walk against `reference` (which must outlive the
 // options), small steps: quick enough for a unit test.
-learn::TuneOptions short_tune(const gait::Normative& reference, int generations,
+learn::TuneOptions short_tune(const eval::Normative& reference, int generations,
                               std::uint64_t seed) {
   learn::TuneOptions o;
   o.conditions = {learn::main_condition(reference)};
@@ -222,7 +222,7 @@ learn::TuneOptions short_tune(const gait::Normative& reference, int generations,
 }
 
 TEST(Tune, AShortTuneNeverEndsWorseThanItsStart) {
-  const gait::Normative free = io::load_normative("schwartz2008_free");
+  const eval::Normative free = io::load_normative("schwartz2008_free");
   const learn::TuneOptions o = short_tune(free, 4, 3);
   const double start = learn::walk_cost(test::default_set(), o);
   const learn::TuneResult r = learn::tune(test::default_set(), o);
@@ -236,7 +236,7 @@ TEST(Tune, AShortTuneNeverEndsWorseThanItsStart) {
 }
 
 TEST(Tune, PolishingImprovesTheRoundedValuesItWritesOut) {
-  const gait::Normative free = io::load_normative("schwartz2008_free");
+  const eval::Normative free = io::load_normative("schwartz2008_free");
   learn::TuneOptions o = short_tune(free, 2, 2);
   o.polish_generations = 3;
   o.digits = 3;

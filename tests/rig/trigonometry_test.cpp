@@ -1,7 +1,7 @@
 // The walker's own sine, cosine and arc tangents (src/rig/trigonometry.hpp): within about an ulp
 // of libm over the angles a rig takes and far beyond, libm's answers where they hand over to it,
 // and the same bits on every machine (golden values).
-#include "../../src/rig/trigonometry.hpp"
+#include "runtime/rig/trigonometry.hpp"
 
 #include <gtest/gtest.h>
 

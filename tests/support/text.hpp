@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "fuzzygait/io/svg.hpp"
+#include "fuzzygait/plot/svg.hpp"
 
 namespace fuzzygait::test {
 
@@ -37,7 +37,7 @@ inline void keep(const std::string& svg, const std::string& name) {
     std::ofstream(std::filesystem::path(folder) / name) << svg;
   }
 }
-inline void keep(const io::svg::Figure& figure, const std::string& name) {
+inline void keep(const plot::svg::Figure& figure, const std::string& name) {
   if (const char* folder = std::getenv("FUZZYGAIT_SVG_OUT")) {
     figure.save(std::filesystem::path(folder) / name);
   }

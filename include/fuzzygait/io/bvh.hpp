@@ -37,7 +37,7 @@
 
 #include <iosfwd>
 
-#include "fuzzygait/gait/motion.hpp"
+#include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/rig/rig.hpp"
 
 namespace fuzzygait::io {
@@ -56,6 +56,6 @@ double bvh_hip_width(const rig::Segments& segments, const BvhOptions& options = 
 
 // Throws std::invalid_argument for a motion without frames, a bad fps or rig, a non-finite
 // value in a frame (naming it), or options out of range.
-void write_bvh(std::ostream& out, const gait::Motion& motion, const BvhOptions& options = {});
+void write_bvh(std::ostream& out, const eval::Motion& motion, const BvhOptions& options = {});
 
 }  // namespace fuzzygait::io

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/gait/controllers.hpp"
-#include "fuzzygait/gait/evaluation.hpp"
 
 namespace fuzzygait::learn {
 
@@ -19,7 +19,7 @@ struct WalkCondition {
   double stature = 1.75;
   double step_length = 0.70;
   // Curves scored against this reference with this weight (none: contact and timing only).
-  const gait::Normative* reference = nullptr;
+  const eval::Normative* reference = nullptr;
   double realism_weight = 1.0;
   // The curve errors pay steeply above TuneOptions' thigh/knee/ankle_rmse_max (the main
   // condition, whose curves the acceptance bounds judge).
@@ -27,14 +27,14 @@ struct WalkCondition {
 };
 
 // The main condition: a 1.75 m adult's 0.70 m steps against `reference`, bounds enforced.
-WalkCondition main_condition(const gait::Normative& reference);
+WalkCondition main_condition(const eval::Normative& reference);
 // The main condition and the step/stature grid around it: the 1.75 m adult's 0.55 and 0.85 m
 // steps against the slower and faster references (realism weight 0.3), and the rest of the
 // acceptance grid (steps 0.50, 0.60, 0.70, 0.85 m for statures 1.50, 1.75, 2.00 m) for contact
 // and timing only.
-std::vector<WalkCondition> grid_conditions(const gait::Normative& reference,
-                                           const gait::Normative& slower,
-                                           const gait::Normative& faster);
+std::vector<WalkCondition> grid_conditions(const eval::Normative& reference,
+                                           const eval::Normative& slower,
+                                           const eval::Normative& faster);
 // Seeds of `count` random starts that must settle into the gait (TuneOptions::recovery_seeds).
 std::vector<std::uint64_t> recovery_seeds(int count);
 
@@ -69,7 +69,7 @@ struct TuneOptions {
   // reference's at the same cadence, above which a condition with enforce_bounds pays: how much
   // snappier than people the joints may move (their ease in and out). No limit by default.
   double acceleration_ratio_max = std::numeric_limits<double>::infinity();
-  // Heel bounce (gait::GaitReport::max_heel_bounce, m) above which every condition pays, 20 a
+  // Heel bounce (eval::GaitReport::max_heel_bounce, m) above which every condition pays, 20 a
   // millimetre: a heel that lifts after foot flat and drops back before heel-off. No limit by
   // default.
   double heel_bounce_max = std::numeric_limits<double>::infinity();

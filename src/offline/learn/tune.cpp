@@ -1,0 +1,420 @@
+#include "fuzzygait/learn/tune.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "fuzzygait/eval/motion.hpp"
+#include "fuzzygait/eval/recovery.hpp"
+#include "fuzzygait/fuzzy/term.hpp"
+#include "fuzzygait/learn/cmaes.hpp"
+#include "runtime/common/format.hpp"
+
+namespace fuzzygait::learn {
+namespace {
+
+double round_significant(double v, int digits) {
+  if (v == 0.0 || !std::isfinite(v)) return v;
+  const double magnitude =
+      std::pow(10.0, digits - 1 - static_cast<int>(std::floor(std::log10(std::abs(v)))));
+  return std::round(v * magnitude) / magnitude;
+}
+
+gait::ControllerSet rebuild(const gait::ControllerSet& base, std::vector<fuzzy::Engine>& engines,
+                            double inertia) {
+  gait::ControllerSet set = base;
+  set.inertia = inertia;
+  for (std::size_t s = 0; s < engines.size(); ++s) {
+    set.controllers[s] = gait::Controller(std::move(engines[s]), base.controllers[s].source());
+  }
+  return set;
+}
+
+}  // namespace
+
+SetParameters::SetParameters(const gait::ControllerSet& base, double minimum_inertia)
+    : base_(base), minimum_inertia_(minimum_inertia) {
+  for (std::size_t s = 0; s < base.controllers.size(); ++s) {
+    const fuzzy::Engine& e = base.controllers[s].engine();
+    const bool hip =
+        s == static_cast<std::size_t>(gait::slot(gait::LegPhase::Swing, gait::Joint::Hip)) ||
+        s == static_cast<std::size_t>(gait::slot(gait::LegPhase::Stance, gait::Joint::Hip));
+    for (const fuzzy::Term& t : e.outputs.at(0).terms) {
+      if (t.kind != fuzzy::TermKind::Constant) continue;
+      scales_.push_back(hip ? 2.0 : 200.0);
+      start_.push_back(t.parameters[0]);
+    }
+  }
+  scales_.push_back(0.02);
+  start_.push_back(std::max(base.inertia, minimum_inertia_));
+  // Interior knots of the inputs of partition controllers: when along its progress a joint
+  // changes its mind.
+  for (std::size_t s = 0; s < base.controllers.size(); ++s) {
+    if (!base.controllers[s].fast_path()) continue;
+    const fuzzy::Engine& e = base.controllers[s].engine();
+    for (std::size_t i = 0; i < e.inputs.size(); ++i) {
+      const fuzzy::InputVariable& v = e.inputs[i];
+      // Only timing moves: the words of angles ("flat" is 0 degrees) keep their meaning.
+      if (v.name != "delta" && v.name != "other_delta") continue;
+      for (std::size_t k = 1; k + 1 < v.terms.size(); ++k) {
+        knots_.push_back({s, i, k});
+        scales_.push_back(0.15 * (v.maximum - v.minimum));
+        start_.push_back(v.terms[k].parameters[1]);
+      }
+    }
+  }
+}
+
+std::vector<double> SetParameters::values() const {
+  std::vector<double> v(start_.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    v[i] = start_[i] / scales_[i];
+  return v;
+}
+
+gait::ControllerSet SetParameters::apply(const std::vector<double>& scaled) const {
+  std::vector<double> values(scaled.size());
+  for (std::size_t i = 0; i < values.size(); ++i)
+    values[i] = scaled[i] * scales_[i];
+  return with_values(values);
+}
+
+gait::ControllerSet SetParameters::with_values(const std::vector<double>& values) const {
+  std::vector<fuzzy::Engine> engines;
+  std::size_t k = 0;
+  for (const gait::Controller& c : base_.controllers) {
+    fuzzy::Engine e = c.engine();
+    for (fuzzy::Term& t : e.outputs.at(0).terms) {
+      if (t.kind == fuzzy::TermKind::Constant) t.parameters[0] = values[k++];
+    }
+    engines.push_back(std::move(e));
+  }
+  const double inertia = std::clamp(std::abs(values[k++]), minimum_inertia_, 0.2);
+  for (const Knot& knot : knots_) {
+    fuzzy::InputVariable& v = engines[knot.slot].inputs[knot.input];
+    const double gap = 0.02 * (v.maximum - v.minimum);
+    const double low = v.terms[knot.index - 1].parameters[1] + gap;
+    const double high = v.terms[knot.index + 1].parameters[1] - gap;
+    const double at = std::clamp(values[k++], low, std::max(low, high));
+    // The knot is the peak of its term and the feet of its neighbours (a strong partition).
+    v.terms[knot.index].parameters[1] = at;
+    v.terms[knot.index - 1].parameters[2] = at;
+    v.terms[knot.index + 1].parameters[0] = at;
+  }
+  return rebuild(base_, engines, inertia);
+}
+
+gait::ControllerSet SetParameters::rounded(const std::vector<double>& scaled,
+                                           int significant) const {
+  std::vector<double> values(scaled.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    values[i] = round_significant(scaled[i] * scales_[i], significant);
+  }
+  return with_values(values);
+}
+
+double word_penalty(const gait::ControllerSet& set) {
+  // Each word promises a direction and a size: "stay" is still, "flex" bends the joint, a
+  // "fast" word is faster than its plain form, and so on. A tuned value that breaks its word's
+  // promise would mislead the artist who reads the rules.
+  double penalty = 0.0;
+  for (const gait::Controller& c : set.controllers) {
+    const fuzzy::OutputVariable& out = c.engine().outputs.at(0);
+    const double scale = 0.02 * (out.maximum - out.minimum);
+    auto value = [&out](const std::string& word, double& v) {
+      const fuzzy::Term* t = out.find_term(word);
+      if (!t || t->kind != fuzzy::TermKind::Constant) return false;
+      v = t->parameters[0];
+      return true;
+    };
+    for (const fuzzy::Term& t : out.terms) {
+      if (t.kind != fuzzy::TermKind::Constant) continue;
+      const double v = t.parameters[0];
+      const std::string& w = t.name;
+      auto has = [&w](const char* part) { return w.find(part) != std::string::npos; };
+      if (w == "stay" || w == "hold") penalty += std::max(0.0, std::abs(v) - scale) / scale;
+      const bool positive = has("flex") || has("up") || has("roll") || has("settle") ||
+                            (w == "slow" || w == "fast" || w == "steady" || w == "late");
+      const bool negative =
+          has("extend") || has("down") || has("push") || has("lower") || w == "back";
+      if (positive) penalty += std::max(0.0, -v) / scale;
+      if (negative) penalty += std::max(0.0, v) / scale;
+      const std::size_t fast = w.find("_fast");
+      double base = 0.0;
+      if (fast != std::string::npos && value(w.substr(0, fast), base)) {
+        penalty += std::max(0.0, std::abs(base) - std::abs(v)) / scale;
+      }
+      const std::size_t slow = w.find("_slow");
+      if (slow != std::string::npos && value(w.substr(0, slow), base)) {
+        penalty += std::max(0.0, std::abs(v) - std::abs(base)) / scale;
+      }
+    }
+    double slow = 0.0;
+    double fast = 0.0;
+    double steady = 0.0;
+    double late = 0.0;
+    if (value("slow", slow) && value("fast", fast)) penalty += std::max(0.0, slow - fast) / scale;
+    // The body's steady progress is faster than its slow start and its late finish.
+    if (value("steady", steady)) {
+      if (value("slow", slow)) penalty += std::max(0.0, slow - steady) / scale;
+      if (value("late", late)) penalty += std::max(0.0, late - steady) / scale;
+    }
+  }
+  return penalty;
+}
+
+namespace {
+
+// Recovery from an awkward start (eval::walk_from_random_start, the acceptance test's check):
+// the walk must stay sound and settle into steps of the commanded length within three steps.
+// Returns 0 when it does.
+double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::string* report) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  const gait::WalkerOptions wo;
+  double cost = 0.0;
+  try {
+    const eval::RecoveryReport r = eval::walk_from_random_start(set, wo, seed, ground);
+    if (!r.sound()) cost = 100.0;
+    cost += 5.0 * r.unsettled_steps(wo.step_length);
+  } catch (const std::exception&) {
+    cost = 100.0;
+  }
+  if (report && cost > 0.0) {
+    *report += "random start " + std::to_string(seed) + ": cost " + std::to_string(cost) + "\n";
+  }
+  return cost;
+}
+
+}  // namespace
+
+WalkCondition main_condition(const eval::Normative& reference) {
+  return {.stature = 1.75,
+          .step_length = 0.70,
+          .reference = &reference,
+          .realism_weight = 1.0,
+          .enforce_bounds = true};
+}
+
+std::vector<WalkCondition> grid_conditions(const eval::Normative& reference,
+                                           const eval::Normative& slower,
+                                           const eval::Normative& faster) {
+  std::vector<WalkCondition> conditions = {
+      main_condition(reference),
+      {.stature = 1.75, .step_length = 0.55, .reference = &slower, .realism_weight = 0.3},
+      {.stature = 1.75, .step_length = 0.85, .reference = &faster, .realism_weight = 0.3}};
+  // The rest of the acceptance grid, for contact and timing.
+  for (const double step : {0.50, 0.60, 0.70, 0.85}) {
+    for (const double stature : {1.50, 1.75, 2.00}) {
+      if (stature == 1.75 && (step == 0.70 || step == 0.85)) continue;  // walked above
+      conditions.push_back({.stature = stature, .step_length = step});
+    }
+  }
+  return conditions;
+}
+
+std::vector<std::uint64_t> recovery_seeds(int count) {
+  std::vector<std::uint64_t> seeds;
+  for (int k = 0; k < count; ++k)
+    seeds.push_back(1000 + static_cast<std::uint64_t>(k));
+  return seeds;
+}
+
+void validate(const TuneOptions& o) {
+  auto within = [](const char* field, double value, double low, double high) {
+    if (!(value >= low && value <= high)) {
+      throw std::invalid_argument("tune: " + std::string(field) + " must be between " +
+                                  common::number_text(low) + " and " + common::number_text(high) +
+                                  ", got " + common::number_text(value));
+    }
+  };
+  auto ordered = [&within](const char* field, double low, double high, double least, double most) {
+    within(field, low, least, most);
+    within(field, high, low, most);  // the range's high end: from its low end up
+  };
+  within("duration", o.duration, 1.0, 3600.0);
+  within("fps", o.fps, 1.0, 10000.0);
+  ordered("cycle time range", o.cycle_time_min, o.cycle_time_max, 0.1, 10.0);
+  ordered("stance range", o.stance_min, o.stance_max, 0.0, 100.0);
+  ordered("knee peak range", o.knee_peak_min, o.knee_peak_max, 0.0, 180.0);
+  ordered("pelvis range", o.pelvis_range_min, o.pelvis_range_max, 0.0, 1e9);
+  within("minimum inertia", o.minimum_inertia, 0.001, 1.0);
+  within("thigh RMSE bound", o.thigh_rmse_max, 0.0, 180.0);
+  within("knee RMSE bound", o.knee_rmse_max, 0.0, 180.0);
+  within("ankle RMSE bound", o.ankle_rmse_max, 0.0, 180.0);
+  within("slip bound", o.slip_max, 0.0, 1.0);
+  within("step error bound", o.step_error_max, 0.0, 1000.0);
+  within("word penalty bound", o.word_penalty_max, 0.0, 1e9);
+  within("acceleration ratio bound", o.acceleration_ratio_max, 1e-9,
+         std::numeric_limits<double>::infinity());
+  within("heel bounce bound", o.heel_bounce_max, 0.0, std::numeric_limits<double>::infinity());
+  within("generations", o.generations, 1, 1e6);
+  within("polish generations", o.polish_generations, 0, 1e6);
+  within("digits", o.digits, 1, 17);
+  within("threads", o.threads, 1, 1024);
+  within("sigma", o.sigma, 1e-9, 10.0);
+  within("recovery starts", static_cast<double>(o.recovery_seeds.size()), 0, 10000);
+}
+
+double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std::string* report,
+                 int* failed_walks) {
+  validate(options);
+  if (failed_walks) *failed_walks = 0;
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  const double words = word_penalty(set);
+  double total = 10.0 * words + 100.0 * std::max(0.0, words - options.word_penalty_max);
+  if (report && words > 0.0) {
+    *report += "words against their meaning: penalty " + std::to_string(words) + "\n";
+  }
+  for (std::uint64_t seed : options.recovery_seeds)
+    total += recovery_cost(set, seed, report);
+  for (const WalkCondition& c : options.conditions) {
+    double cost = 0.0;
+    try {
+      gait::WalkerOptions wo;
+      wo.segments = rig::segments_from_stature(c.stature);
+      wo.step_length = c.step_length;
+      gait::Walker walker(set, wo, ground);
+      const eval::Motion motion = eval::record(walker, options.duration, options.fps);
+      const eval::GaitReport r = eval::evaluate(motion, ground, c.reference, c.step_length);
+      auto over = [](double value, double low, double high) {
+        return std::max(0.0, low - value) + std::max(0.0, value - high);
+      };
+      const double step_error = r.step_error_percent.value();  // the step is always given
+      cost += 2.0 * step_error + 20.0 * std::max(0.0, step_error - options.step_error_max);
+      cost += 200.0 * std::max(0.0, 0.012 - r.min_toe_clearance) / 0.012;
+      cost += 100.0 * r.cycle_time_sd + 100.0 * r.step_length_sd / c.step_length;
+      cost += 2.0 * over(r.stance_percent, options.stance_min, options.stance_max);
+      cost += 0.5 * over(1000.0 * r.pelvis_vertical_range, options.pelvis_range_min,
+                         options.pelvis_range_max);
+      cost += 50.0 * over(r.cycle_time, options.cycle_time_min, options.cycle_time_max);
+      // Velocities must not jump where a phase hands a joint to another controller.
+      cost += 10.0 *
+              std::max(0.0, r.max_velocity_jump / std::max(r.typical_velocity_change, 1.0) - 1.2);
+      // A foot point near the ground that moves along it is a slip (the walk checker's rule).
+      cost += 2000.0 * std::max(0.0, r.max_slip - 0.0005) +
+              20000.0 * std::max(0.0, r.max_slip - options.slip_max) + 1000.0 * r.max_penetration;
+      cost += 20000.0 * std::max(0.0, r.max_heel_bounce - options.heel_bounce_max);
+      if (c.reference) {
+        double realism = 2.0 * (r.thigh_score->rmse + r.knee_score->rmse + r.ankle_score->rmse);
+        realism += 10.0 * (2.0 - r.thigh_score->pearson - r.knee_score->pearson) +
+                   20.0 * (1.0 - r.ankle_score->pearson);
+        if (c.enforce_bounds) {
+          realism += 10.0 * (std::max(0.0, r.thigh_score->rmse - options.thigh_rmse_max) +
+                             std::max(0.0, r.knee_score->rmse - options.knee_rmse_max) +
+                             std::max(0.0, r.ankle_score->rmse - options.ankle_rmse_max));
+          for (const eval::JointScore* s : {&*r.thigh_score, &*r.knee_score}) {
+            realism +=
+                10.0 * std::max(0.0, s->acceleration_ratio() - options.acceleration_ratio_max);
+          }
+        }
+        realism += over(r.knee_peak, options.knee_peak_min, options.knee_peak_max) +
+                   over(r.knee_peak_percent, 69.0, 77.0);
+        // The toes rest near neutral while the foot is flat and again before landing.
+        double toe = 0.0;
+        for (int k = 5; k <= 15; ++k)
+          toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
+        for (int k = 43; k <= 50; ++k)
+          toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
+        realism += 0.1 * toe;
+        cost += c.realism_weight * realism;
+      }
+      if (report) {
+        char line[400];
+        std::snprintf(
+            line, sizeof line,
+            "stature %.2f step %.2f: cost %.2f | step %.3f (%.1f%%) stance %.1f cycle %.3f "
+            "clear %.1f mm knee %.0f@%.0f%%",
+            c.stature, c.step_length, cost, r.step_length, step_error, r.stance_percent,
+            r.cycle_time, 1000.0 * r.min_toe_clearance, r.knee_peak, r.knee_peak_percent);
+        *report += line;
+        if (c.reference) {
+          std::snprintf(line, sizeof line,
+                        " | rmse thigh %.1f knee %.1f ankle %.1f, r %.2f %.2f %.2f, acceleration "
+                        "x%.1f x%.1f x%.1f",
+                        r.thigh_score->rmse, r.knee_score->rmse, r.ankle_score->rmse,
+                        r.thigh_score->pearson, r.knee_score->pearson, r.ankle_score->pearson,
+                        r.thigh_score->acceleration_ratio(), r.knee_score->acceleration_ratio(),
+                        r.ankle_score->acceleration_ratio());
+          *report += line;
+        }
+        *report += "\n";
+      }
+    } catch (const std::exception& e) {
+      cost = 1000.0;
+      if (failed_walks) ++*failed_walks;
+      if (report)
+        *report += "stature/step " + std::to_string(c.stature) + "/" +
+                   std::to_string(c.step_length) + ": failed: " + e.what() + "\n";
+    }
+    total += std::isfinite(cost) ? cost : 1000.0;
+  }
+  return total;
+}
+
+namespace {
+
+// The cost of the set `make` builds from a candidate. A candidate that makes no controller set
+// (a value the search drove to nan or infinity, which gait::Controller refuses) costs more than
+// one whose every walk failed, rather than ending the tuning from a worker thread.
+double candidate_cost(const std::function<gait::ControllerSet()>& make,
+                      const TuneOptions& options) {
+  gait::ControllerSet set;
+  try {
+    set = make();
+  } catch (const std::invalid_argument&) {
+    return 1000.0 *
+           static_cast<double>(options.conditions.size() + options.recovery_seeds.size() + 1);
+  }
+  return walk_cost(set, options);
+}
+
+}  // namespace
+
+TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
+  validate(options);
+  const SetParameters parameters(start, options.minimum_inertia);
+  CmaesOptions cma;
+  cma.sigma = options.sigma;
+  cma.max_generations = options.generations;
+  cma.seed = options.seed;
+  cma.threads = options.threads;
+  cma.progress = [&options](int generation, double best, const std::vector<double>&) {
+    if (options.progress) options.progress(generation, best);
+  };
+  auto cost = [&](const std::vector<double>& x) {
+    return candidate_cost([&] { return parameters.apply(x); }, options);
+  };
+  const CmaesResult r = minimize(cost, parameters.values(), cma);
+  TuneResult out;
+  out.set = parameters.apply(r.best);
+  out.cost = r.best_cost;
+  out.evaluations = r.evaluations;
+  if (options.polish_generations <= 0) {
+    // The values as the set holds them, rounded.
+    const SetParameters tuned(out.set, options.minimum_inertia);
+    out.rounded = tuned.rounded(tuned.values(), options.digits);
+  } else {
+    // The written values are rounded for the artist: polish the result where the cost sees
+    // exactly those rounded values.
+    auto rounded_cost = [&](const std::vector<double>& x) {
+      return candidate_cost([&] { return parameters.rounded(x, options.digits); }, options);
+    };
+    CmaesOptions polish = cma;
+    polish.sigma = 0.25 * options.sigma;
+    polish.max_generations = options.polish_generations;
+    polish.seed = options.seed + 1;
+    polish.progress = [&options](int generation, double best, const std::vector<double>&) {
+      if (options.progress) options.progress(options.generations + generation, best);
+    };
+    const CmaesResult p = minimize(rounded_cost, r.best, polish);
+    out.set = parameters.rounded(p.best, options.digits);
+    out.cost = p.best_cost;
+    out.evaluations += p.evaluations;
+    out.rounded = out.set;
+  }
+  return out;
+}
+
+}  // namespace fuzzygait::learn

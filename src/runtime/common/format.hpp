@@ -1,0 +1,12 @@
+// The one way numbers are written into messages (errors, warnings, reports): the shortest text
+// that reads back to the same double ("0.7", "1e-07", "1e+300"), and "nan", "inf", "-inf" without
+// a sign a platform might add. Internal to fuzzygait (not installed).
+#pragma once
+
+#include <string>
+
+namespace fuzzygait::common {
+
+std::string number_text(double value);
+
+}  // namespace fuzzygait::common

@@ -1,0 +1,144 @@
+#include "fuzzygait/gait/crowd.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "runtime/rig/trigonometry.hpp"
+
+namespace fuzzygait::gait {
+namespace {
+constexpr std::size_t kLanesPerSlot = 2 * Crowd::kBlock;
+}
+
+Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
+             std::span<const WalkerOptions> characters) {
+  walkers_.reserve(characters.size());
+  for (std::size_t i = 0; i < characters.size(); ++i) {
+    if (i > 0 && !(characters[i].time_step == characters[0].time_step)) {
+      throw std::invalid_argument("character " + std::to_string(i) +
+                                  ": a crowd's characters step together, so their time steps "
+                                  "must be equal");
+    }
+    try {
+      walkers_.emplace_back(controllers, characters[i], terrain);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("character " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  time_step_ = characters.empty() ? WalkerOptions{}.time_step : characters[0].time_step;
+  steps_.resize(kBlock);
+  batched_ = controllers.controllers.size() == static_cast<std::size_t>(kSlotCount);
+  for (const Controller& c : controllers.controllers)
+    batched_ = batched_ && c.packed() != nullptr;
+  for (const WalkerOptions& o : characters)
+    batched_ = batched_ && !o.controller_backend;
+  if (batched_) {
+    metrics_.resize(2 * kMetricCount * kLanesPerSlot);
+    output_.resize(kLanesPerSlot * static_cast<std::size_t>(kSlotCount));
+    output_of_.resize(2 * kBlock);
+    for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
+      const Controller& c = controllers.controllers[s];
+      packed_[s] = c.packed();
+      input_of_slot_[s][0] = static_cast<std::size_t>(c.input(0));
+      // A one-input controller does not read its second input.
+      input_of_slot_[s][1] = static_cast<std::size_t>(c.input(c.input_count() - 1));
+    }
+  }
+  angles_.resize(8 * kBlock);
+  sines_.resize(angles_.size());
+  cosines_.resize(angles_.size());
+}
+
+void Crowd::advance(double dt) {
+  const Walker::SubSteps s = Walker::sub_steps(dt, time_step_);
+  for (std::size_t first = 0; first < walkers_.size(); first += kBlock) {
+    const std::size_t count = std::min(kBlock, walkers_.size() - first);
+    for (int i = 0; i < s.count; ++i)
+      step(first, count, s.length);
+  }
+}
+
+void Crowd::clear_events() {
+  for (Walker& w : walkers_)
+    w.clear_events();
+}
+
+void Crowd::step(std::size_t first, std::size_t count, double h) {
+  for (std::size_t i = 0; i < count; ++i)
+    walkers_[first + i].measure(steps_[i]);
+  command(first, count);
+  for (std::size_t i = 0; i < count; ++i)
+    walkers_[first + i].integrate(h, steps_[i]);
+  place_legs(first, count);
+  for (std::size_t i = 0; i < count; ++i)
+    walkers_[first + i].finish_step(h, steps_[i]);
+}
+
+// Each controller for every leg of the block it drives this step at once: each leg's metrics laid
+// out once in its phase's lanes, metric by metric, each slot evaluated in vectors over its phase's
+// lanes, and each leg's four outputs put back as its commands.
+void Crowd::command(std::size_t first, std::size_t count) {
+  if (!batched_) {
+    for (std::size_t i = 0; i < count; ++i)
+      walkers_[first + i].command(steps_[i].metrics, steps_[i].commands);
+    return;
+  }
+  // A leg's four controllers are those of its phase, so it takes the same lane in each.
+  std::size_t legs_in[2] = {};  // [swing, stance]
+  constexpr std::size_t kMetrics = kMetricCount;
+  for (std::size_t i = 0; i < count; ++i) {
+    Walker::StepData& d = steps_[i];
+    const WalkerState& state = walkers_[first + i].state_;
+    for (std::size_t leg = 0; leg < 2; ++leg) {
+      const std::size_t phase = state.legs[leg].phase == Phase::Swing ? 0 : 1;
+      const std::size_t k = legs_in[phase]++;
+      double* metrics = &metrics_[phase * kMetrics * kLanesPerSlot + k];
+      for (std::size_t m = 0; m < kMetrics; ++m)
+        metrics[m * kLanesPerSlot] = d.metrics[leg][m];
+      output_of_[2 * i + leg] = 4 * phase * kLanesPerSlot + k;
+    }
+  }
+  // Each phase's lanes padded to whole vectors (the padding holds what earlier steps left there;
+  // its outputs are unread). A phase has room for every lane padding can add.
+  static_assert(kLanesPerSlot % fuzzy::PackedPartition::kVectorLanes == 0);
+  const std::size_t lanes_in[2] = {fuzzy::PackedPartition::padded_lanes(legs_in[0]),
+                                   fuzzy::PackedPartition::padded_lanes(legs_in[1])};
+  for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
+    const std::size_t phase = s / 4;
+    const std::size_t lane = s * kLanesPerSlot;
+    const double* metrics = &metrics_[phase * kMetrics * kLanesPerSlot];
+    packed_[s]->evaluate(metrics + input_of_slot_[s][0] * kLanesPerSlot,
+                         metrics + input_of_slot_[s][1] * kLanesPerSlot, &output_[lane],
+                         lanes_in[phase]);
+  }
+  // Each leg's four outputs, a slot's lanes apart, to its commands.
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t leg = 0; leg < 2; ++leg) {
+      const double* out = &output_[output_of_[2 * i + leg]];
+      for (std::size_t joint = 0; joint < 4; ++joint)
+        steps_[i].commands[leg][joint] = out[joint * kLanesPerSlot];
+    }
+  }
+}
+
+// Every leg's segment sines and cosines in one batch, for the orientations the legs are placed
+// with next (finish_step() finds them in its cache).
+void Crowd::place_legs(std::size_t first, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t leg = 0; leg < 2; ++leg) {
+      Walker::TrigCache& cache = walkers_[first + i].trig_[leg];
+      cache.orientation = walkers_[first + i].orientation(static_cast<int>(leg));
+      rig::detail::to_lanes(cache.orientation, &angles_[8 * i + 4 * leg]);
+    }
+  }
+  rig::detail::sin_cos(angles_.data(), sines_.data(), cosines_.data(), 8 * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t leg = 0; leg < 2; ++leg) {
+      walkers_[first + i].trig_[leg].trig =
+          rig::detail::from_lanes(&sines_[8 * i + 4 * leg], &cosines_[8 * i + 4 * leg]);
+    }
+  }
+}
+
+}  // namespace fuzzygait::gait

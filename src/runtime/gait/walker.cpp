@@ -1,0 +1,899 @@
+#include "fuzzygait/gait/walker.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "fuzzygait/fuzzy/term.hpp"
+#include "runtime/common/format.hpp"
+#include "runtime/common/splitmix64.hpp"
+#include "runtime/rig/trigonometry.hpp"
+
+namespace fuzzygait::gait {
+namespace {
+
+using fuzzygait::common::number_text;
+using rig::LegAngles;
+using rig::LegPoints;
+using rig::Point;
+using rig::detail::arccos;
+using rig::detail::arcsin;
+using rig::detail::arctan2;
+using rig::detail::sin_cos;
+
+constexpr double kGravity = 9.81;
+constexpr std::size_t kEventCapacity = 64;
+// A swing foot lands once its leg's delta reaches this (the leg arrives in front of the body).
+constexpr double kLandingDelta = 0.8;
+// Mid-swing, the clearance reflex keeps a swinging foot this far above the ground (m); lifting it
+// well clear is the swing controllers' job.
+constexpr double kSwingClearance = 0.01;
+// Fastest each joint turns (rad/s; hip, knee, ankle, toe), about 1150 deg/s, a sprinter's knee:
+// the shipped sets' walks peak at 9, 20, 8 and 27 over the step/stature grid (the toes are turned
+// by the ground).
+constexpr rig::LegAngles kMaxJointSpeed{20.0, 20.0, 20.0, 40.0};
+// Longest a swing lasts before the foot is put down anyway, s (walks swing for 0.3 to 0.5).
+constexpr double kLongestSwing = 1.0;
+// Fastest the clearance reflex folds the knee, rad/s.
+constexpr double kReflexSpeed = 10.0;
+// Longest dt one advance() takes, s: an hour of walking, longer than any frame, so that a
+// nonsense dt (a timer gone wrong) is an error rather than a program frozen for days or a count
+// of sub-steps overflowing. With the shortest time step it is 3.6e8 sub-steps, within an int.
+constexpr double kLongestAdvance = 3600.0;
+// Longest step, in leg lengths: as far as these legs reach. (The shortest is the controller
+// set's: ControllerSet::shortest_step.)
+constexpr double kLongestStep = 1.2;
+constexpr double kShortestTimeStep = 1e-5;
+constexpr double kLongestTimeStep = 0.05;
+
+double thigh_of(double tilt, const LegAngles& a) {
+  return a.hip - tilt;
+}
+double shank_of(double tilt, const LegAngles& a) {
+  return a.hip - tilt - a.knee;
+}
+double foot_of(double tilt, const LegAngles& a) {
+  return shank_of(tilt, a) + a.ankle;
+}
+
+// Inclination of the line from `from` to `to`, from the downward vertical, forward positive.
+double inclination(Point from, Point to) {
+  return arctan2(to.x - from.x, from.y - to.y);
+}
+
+// The paper's delta: -1 at the start angle, 0 when the thigh is vertical, +1 at the end angle
+// (linear between start and end when both lie on the same side of the vertical).
+double progress(double theta, double start, double end) {
+  double d;
+  if ((start < 0.0 && end > 0.0) || (start > 0.0 && end < 0.0)) {
+    d = (theta * start >= 0.0) ? -theta / start : theta / end;
+  } else {
+    d = end == start ? 1.0 : -1.0 + 2.0 * (theta - start) / (end - start);
+  }
+  return std::clamp(d, -2.0, 2.0);
+}
+
+// d(theta)/d(delta) averaged over the sweep: hip controllers command a share of the sweep per
+// second, so the thigh's velocity stays smooth where the mapping bends at the vertical.
+double sweep_scale(double start, double end) {
+  return 0.5 * (end - start);
+}
+
+// Between `good` (passes `ok`) and `bad` (fails it), the value nearest `bad` that still passes,
+// to 40 halvings.
+template <class Ok>
+double bisect(double good, double bad, Ok ok) {
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (good + bad);
+    (ok(mid) ? good : bad) = mid;
+  }
+  return good;
+}
+
+// The ground's height under a foot's heel, ball and toe tip.
+struct FootGround {
+  double heel;
+  double ball;
+  double tip;
+};
+FootGround ground_under(const terrain::Terrain& terrain, const LegPoints& p) {
+  return {terrain.height(p.heel.x), terrain.height(p.ball.x), terrain.height(p.tip.x)};
+}
+
+// How deep the heel, ball or (with_tip) toe tip is below the ground (negative when all are
+// above).
+double foot_depth(const LegPoints& p, const FootGround& ground, bool with_tip = true) {
+  const double sole = std::max(ground.heel - p.heel.y, ground.ball - p.ball.y);
+  return with_tip ? std::max(sole, ground.tip - p.tip.y) : sole;
+}
+
+Point contact_point(const LegPoints& p, Phase phase) {
+  return phase == Phase::Ball ? p.ball : p.heel;
+}
+
+// Two joints of a leg (hip and knee, or ankle and toe) as one GCC vector, the width of every
+// x86-64's SSE2: each operation is the same IEEE operation on each joint, so the bits are the
+// scalar code's, in fewer instructions.
+typedef double JointPair __attribute__((vector_size(2 * sizeof(double))));
+typedef std::int64_t PairMask __attribute__((vector_size(2 * sizeof(double))));
+struct Joints {
+  JointPair hip_knee;
+  JointPair ankle_toe;
+};
+Joints joints(const LegAngles& a) {
+  return std::bit_cast<Joints>(a);
+}
+void store(LegAngles& a, const Joints& v) {
+  a = std::bit_cast<LegAngles>(v);
+}
+// Joint by joint, `yes` where the mask is set, else `no`.
+JointPair select(PairMask mask, JointPair yes, JointPair no) {
+  return std::bit_cast<JointPair>((mask & std::bit_cast<PairMask>(yes)) |
+                                  (~mask & std::bit_cast<PairMask>(no)));
+}
+// std::clamp joint by joint (a NaN stays NaN).
+JointPair clamp(JointPair v, JointPair low, JointPair high) {
+  const JointPair raised = select(v < low, low, v);
+  return select(high < raised, high, raised);
+}
+
+}  // namespace
+
+const char* name(Phase phase) {
+  switch (phase) {
+    case Phase::Swing:
+      return "swing";
+    case Phase::Heel:
+      return "heel";
+    case Phase::Flat:
+      return "flat";
+    case Phase::Ball:
+      return "ball";
+  }
+  return "?";
+}
+
+const char* name(Event event) {
+  switch (event) {
+    case Event::HeelStrike:
+      return "heel strike";
+    case Event::ForefootStrike:
+      return "forefoot strike";
+    case Event::FootFlat:
+      return "foot flat";
+    case Event::HeelOff:
+      return "heel off";
+    case Event::ToeOff:
+      return "toe off";
+  }
+  return "?";
+}
+
+double Walker::min_step_length(const ControllerSet& controllers, const rig::Segments& s) {
+  return controllers.shortest_step * s.leg_length();
+}
+
+double Walker::max_step_length(const rig::Segments& s) {
+  return kLongestStep * s.leg_length();
+}
+
+Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
+               const terrain::Terrain& terrain)
+    : controllers_(&controllers),
+      terrain_(&terrain),
+      segments_(options.segments),
+      limits_(options.limits),
+      step_length_(options.step_length),
+      time_step_(options.time_step),
+      controller_backend_(options.controller_backend) {
+  rig::validate(segments_);
+  rig::validate(limits_);
+  if (controllers.controllers.size() != static_cast<std::size_t>(kSlotCount)) {
+    throw std::invalid_argument("the controller set is incomplete");
+  }
+  if (!(time_step_ >= kShortestTimeStep && time_step_ <= kLongestTimeStep)) {
+    throw std::invalid_argument("time step must be between 0.00001 and 0.05 s, got " +
+                                number_text(time_step_));
+  }
+  set_step_length(options.step_length);
+  workspaces_.reserve(static_cast<std::size_t>(kSlotCount));
+  for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
+    workspaces_.push_back(controllers.controllers[s].make_workspace());
+  }
+  events_.reserve(kEventCapacity);
+  // Angle between the thigh and the hip-heel line of a straight leg with a neutral ankle.
+  const LegPoints straight = rig::forward_kinematics(segments_, {0.0, 0.0}, 0.0, LegAngles{});
+  heel_offset_ = -inclination(straight.hip, straight.heel);
+  start(options.start);
+}
+
+void Walker::set_step_length(double metres) {
+  const double shortest = min_step_length(*controllers_, segments_);
+  const double longest = max_step_length(segments_);
+  if (!(metres >= shortest && metres <= longest)) {
+    auto fixed = [](double value, int decimals) {
+      char text[400];  // room for any double in full
+      std::snprintf(text, sizeof text, "%.*f", decimals, value);
+      return std::string(text);
+    };
+    throw std::invalid_argument(
+        "step length must be between " + fixed(shortest, 3) + " m (" +
+        fixed(controllers_->shortest_step, 2) + " leg lengths, the shortest '" +
+        controllers_->name + "' walks) and " + fixed(longest, 3) + " m (" + fixed(kLongestStep, 1) +
+        " leg lengths, the reach of these legs), got " + fixed(metres, 3) + " m");
+  }
+  step_length_ = metres;
+}
+
+rig::Pose Walker::pose() const {
+  rig::Pose p;
+  p.pelvis = state_.pelvis;
+  p.pelvis_tilt = state_.pelvis_tilt;
+  p.legs = {state_.legs[0].angles, state_.legs[1].angles};
+  return p;
+}
+
+LegPoints Walker::points(rig::Side side) const {
+  return rig::forward_kinematics(segments_, state_.pelvis, state_.pelvis_tilt,
+                                 state_.legs[rig::index(side)].angles);
+}
+
+namespace {
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+}  // namespace
+
+// rig::forward_kinematics with the walker's tilt: the same points, with the segments' sines and
+// cosines computed only when an orientation changed (bit for bit) since the leg was last placed.
+// Inline, so that a caller computes only the points it reads.
+inline LegPoints Walker::leg_points(int leg, Point hip, const LegAngles& angles) {
+  const rig::LegOrientation o = rig::orientation(state_.pelvis_tilt, angles);
+  TrigCache& t = trig_[static_cast<std::size_t>(leg)];
+  // The test inline: in a crowd, which fills the caches for a step in one batch, most calls pass
+  // (1 % of a crowd's instructions; no change alone).
+  if (!(same_bits(o.thigh, t.orientation.thigh) && same_bits(o.shank, t.orientation.shank) &&
+        same_bits(o.foot, t.orientation.foot) && same_bits(o.toes, t.orientation.toes))) {
+    t.update(o);
+  }
+  return rig::forward_kinematics(segments_, hip, t.trig);
+}
+
+void Walker::TrigCache::update(const rig::LegOrientation& o) {
+  if (same_bits(o.thigh, orientation.thigh) && same_bits(o.shank, orientation.shank) &&
+      same_bits(o.foot, orientation.foot)) {
+    if (same_bits(o.toes, orientation.toes)) return;
+    // Only the toes turned (the ground bent them up, about every other step): theirs alone, the
+    // bits their lane of the four would get.
+    orientation.toes = o.toes;
+    const rig::detail::SinCos toes = sin_cos(o.toes);
+    trig.toes_sin = toes.sin;
+    trig.toes_cos = toes.cos;
+    return;
+  }
+  // All four at once (one vectorised kernel); an unchanged segment gets the same bits again.
+  orientation = o;
+  trig = rig::detail::leg_trig(o);
+}
+
+void Walker::record(rig::Side side, Event event, Point where) {
+  if (events_.size() == kEventCapacity) events_.erase(events_.begin());
+  events_.push_back({state_.time, side, event, where});
+}
+
+double Walker::stance_target() const {
+  const double reach = segments_.thigh + segments_.shank;
+  return -arcsin(std::clamp(0.5 * step_length_ / reach, 0.0, 0.95));
+}
+
+void Walker::start(const StartPose& start_pose) {
+  state_ = WalkerState{};
+  end_points_valid_ = false;
+  state_.pelvis_tilt = controllers_->pelvis_tilt;
+  const double tilt = state_.pelvis_tilt;
+  LegState& left = state_.legs[0];
+  LegState& right = state_.legs[1];
+  // The default start's thigh angles and speeds are those of a 0.70 m step of a 1.75 m adult,
+  // scaled to this step for this leg (a short step of a long leg sweeps a small angle).
+  const double reference = 0.70 / rig::segments_from_stature(1.75).leg_length();
+  const double scale = std::clamp(step_length_ / segments_.leg_length() / reference, 0.5, 1.5);
+  if (start_pose.random) {
+    // Seeds hashed apart first, so nearby seeds do not walk the same sequence.
+    std::uint64_t x = (start_pose.seed ^ 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 31)) * 0x94D049BB133111EBull;
+    detail::SplitMix64 random(x);
+    auto uniform = [&random](double low, double high) {
+      return low + (high - low) * random.uniform();
+    };
+    // Any angles within the joint limits, as long as each foot is the lowest part of its leg
+    // (the feet near the ground, not a kneeling start) and, should it be the foot put down, its
+    // toes can lie on the ground within their limit.
+    const double slope = terrain_->slope(0.0);
+    for (int attempt = 0; attempt < 10000; ++attempt) {
+      bool feet_lowest = true;
+      for (LegState& leg : state_.legs) {
+        leg.angles.hip = uniform(limits_.minimum.hip, limits_.maximum.hip);
+        leg.angles.knee = uniform(limits_.minimum.knee, limits_.maximum.knee);
+        leg.angles.ankle = uniform(limits_.minimum.ankle, limits_.maximum.ankle);
+        leg.angles.toe = uniform(limits_.minimum.toe, limits_.maximum.toe);
+        const LegPoints p = rig::forward_kinematics(segments_, {0.0, 0.0}, tilt, leg.angles);
+        const double foot = std::min({p.heel.y, p.ball.y, p.tip.y});
+        const bool toes_fit = slope - foot_of(tilt, leg.angles) <= limits_.maximum.toe;
+        feet_lowest = feet_lowest && foot < p.knee.y - 0.15 && p.ankle.y < p.knee.y && toes_fit;
+      }
+      if (feet_lowest) break;
+    }
+  } else {
+    // Mid stride: the right foot under the body with its heel just lifted (it starts on the
+    // ball of the foot; flat only for the longest steps), the left leg just off the ground
+    // behind it and already swinging forward (the velocities of a walk at this moment).
+    right.angles = {rig::radians(8.0 * scale) + tilt, rig::radians(12.0), 0.0, 0.0};
+    left.angles = {rig::radians(-14.0 * scale) + tilt, rig::radians(45.0), rig::radians(-12.0),
+                   rig::radians(25.0)};
+    left.velocity = {rig::radians(150.0 * scale), rig::radians(300.0), rig::radians(60.0), 0.0};
+    right.velocity = {rig::radians(-80.0 * scale), 0.0, 0.0, 0.0};
+  }
+  // Put the lower foot on the ground with the pelvis above x = 0.
+  state_.pelvis = {0.0, 0.0};
+  std::array<double, 2> lowest{};
+  for (int leg = 0; leg < 2; ++leg) {
+    const LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt,
+                                                state_.legs[static_cast<std::size_t>(leg)].angles);
+    lowest[static_cast<std::size_t>(leg)] =
+        std::min({p.heel.y - terrain_->height(p.heel.x), p.ball.y - terrain_->height(p.ball.x),
+                  p.tip.y - terrain_->height(p.tip.x)});
+  }
+  // The default start stands on the right foot; a random start on the lower foot.
+  const int down = start_pose.random ? (lowest[0] <= lowest[1] ? 0 : 1) : 1;
+  state_.pelvis.y = -lowest[static_cast<std::size_t>(down)];
+  LegState& planted = state_.legs[static_cast<std::size_t>(down)];
+  LegPoints p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
+  // Toes resting on the ground keep the foot's sole on it.
+  if (p.tip.y - terrain_->height(p.tip.x) < std::min(p.heel.y, p.ball.y) - 1e-9) {
+    planted.angles.toe = terrain_->slope(p.ball.x) - foot_of(tilt, planted.angles);
+    state_.pelvis.y = 0.0;
+    p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
+    state_.pelvis.y =
+        -std::min(p.heel.y - terrain_->height(p.heel.x), p.ball.y - terrain_->height(p.ball.x));
+    p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
+  }
+  const double heel_gap = p.heel.y - terrain_->height(p.heel.x);
+  const double ball_gap = p.ball.y - terrain_->height(p.ball.x);
+  const double flat_within = 0.002;  // m
+  const Phase phase = std::abs(heel_gap - ball_gap) < flat_within ? Phase::Flat
+                      : heel_gap < ball_gap                       ? Phase::Heel
+                                                                  : Phase::Ball;
+  if (phase == Phase::Flat) {
+    // Level the sole on the ground.
+    planted.angles.ankle = terrain_->slope(p.heel.x) - shank_of(tilt, planted.angles);
+    state_.pelvis.y = 0.0;
+    p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
+    state_.pelvis.y = terrain_->height(p.heel.x) - p.heel.y;
+    p = rig::forward_kinematics(segments_, state_.pelvis, tilt, planted.angles);
+  }
+  state_.lead = -1;
+  strike(down, phase,
+         phase == Phase::Ball ? Point{p.ball.x, terrain_->height(p.ball.x)}
+                              : Point{p.heel.x, terrain_->height(p.heel.x)});
+  const int up = 1 - down;
+  if (start_pose.random) {
+    lift_off(up);
+  } else {
+    // As if the right heel had struck a step ago and the left toes had just left the ground.
+    planted.sweep_start = rig::radians(24.0 * scale);
+    planted.strike_x = p.heel.x;
+    lift_off(up);
+    LegState& swinging = state_.legs[static_cast<std::size_t>(up)];
+    swinging.sweep_start = thigh_of(tilt, swinging.angles) + rig::radians(2.0 * scale);
+    if (start_pose.warm_up > 0.0) warm_up(start_pose.warm_up);
+  }
+  events_.clear();
+  state_.heel_strikes = 0;
+}
+
+// Walks `seconds` on level ground at the start's height, then brings that walk back to x = 0:
+// the character starts in its own steady gait rather than from a pose it never takes.
+void Walker::warm_up(double seconds) {
+  const terrain::Terrain* ground = terrain_;
+  const terrain::Terrain level =
+      terrain::Terrain::polyline({{-1e6, ground->height(0.0)}, {1e6, ground->height(0.0)}});
+  terrain_ = &level;
+  for (double t = 0.0; t < seconds; t += time_step_)
+    step(time_step_);
+  terrain_ = ground;
+  const double shift = state_.pelvis.x;
+  state_.pelvis.x = 0.0;
+  end_points_valid_ = false;
+  for (LegState& l : state_.legs) {
+    l.anchor.x -= shift;
+    l.target_x -= shift;
+    l.strike_x -= shift;
+    l.swing_start -= state_.time;
+  }
+  state_.time = 0.0;
+}
+
+void Walker::strike(int leg, Phase phase, Point contact) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const double tilt = state_.pelvis_tilt;
+  l.phase = phase;
+  l.anchor = contact;
+  l.strike_x = phase == Phase::Ball ? contact.x - segments_.heel - segments_.ball : contact.x;
+  l.sweep_start = thigh_of(tilt, l.angles);
+  l.sweep_end = stance_target();
+  ++state_.heel_strikes;
+  record(static_cast<rig::Side>(leg),
+         phase == Phase::Ball ? Event::ForefootStrike : Event::HeelStrike, contact);
+  if (state_.lead < 0) {
+    state_.lead = leg;
+    state_.fall_velocity = 0.0;
+    place_pelvis(leg);
+  }
+}
+
+// The planted leg that carries the pelvis lifts off; the other planted foot takes over.
+void Walker::hand_over(int leg) {
+  const int next = 1 - leg;
+  const bool planted = state_.legs[static_cast<std::size_t>(next)].phase != Phase::Swing;
+  state_.lead = planted ? next : -1;
+  lift_off(leg);
+  if (planted) place_pelvis(next);
+}
+
+void Walker::lift_off(int leg) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const LegPoints p = leg_points(leg, state_.pelvis, l.angles);
+  if (l.phase != Phase::Swing) record(static_cast<rig::Side>(leg), Event::ToeOff, p.tip);
+  l.phase = Phase::Swing;
+  l.swing_start = state_.time;
+  l.sweep_start = thigh_of(state_.pelvis_tilt, l.angles);
+  const int lead = state_.lead;
+  const double from =
+      (lead >= 0 && lead != leg) ? state_.legs[static_cast<std::size_t>(lead)].strike_x : p.heel.x;
+  l.target_x = from + step_length_;
+}
+
+void Walker::place_pelvis(int leg) {
+  place_pelvis(leg, hip_at_origin(leg));
+}
+
+[[gnu::always_inline]] inline void Walker::place_pelvis(int leg, const LegPoints& at_origin) {
+  const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const Point c = contact_point(at_origin, l.phase);
+  state_.pelvis = {l.anchor.x - c.x, l.anchor.y - c.y};
+}
+
+[[gnu::always_inline]] inline LegPoints Walker::hip_at_origin(int leg) {
+  return leg_points(leg, {0.0, 0.0}, state_.legs[static_cast<std::size_t>(leg)].angles);
+}
+
+// Two-link IK of the newly planted leg (the one not carrying the pelvis): hip and knee put its
+// contact point back on its anchor (the ankle itself while the foot is flat). Returns false when
+// out of reach.
+bool Walker::close_chain(int leg) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const rig::Segments& s = segments_;
+  const double tilt = state_.pelvis_tilt;
+  const double slope = terrain_->slope(l.anchor.x);
+  Point target = l.anchor;
+  double we = 0.0;
+  double wn = -s.shank;
+  if (l.phase == Phase::Flat) {
+    // The ankle sits above the planted heel.
+    const rig::detail::SinCos ground = sin_cos(slope);
+    target = {l.anchor.x + s.heel * ground.cos - s.ankle_height * ground.sin,
+              l.anchor.y + s.heel * ground.sin + s.ankle_height * ground.cos};
+  } else {
+    const double cf = l.phase == Phase::Ball ? s.ball : -s.heel;
+    const double cu = -s.ankle_height;
+    const rig::detail::SinCos ankle = sin_cos(l.angles.ankle);
+    const double ca = ankle.cos;
+    const double sa = ankle.sin;
+    we = cf * ca - cu * sa;
+    wn = cf * sa + cu * ca - s.shank;
+  }
+  const double lower = std::sqrt(we * we + wn * wn);
+  const Point hip = state_.pelvis;
+  const double dx = target.x - hip.x;
+  const double dy = target.y - hip.y;
+  const double distance = std::sqrt(dx * dx + dy * dy);
+  if (distance > s.thigh + lower - 1e-9) return false;
+  const double d = std::max(distance, std::abs(s.thigh - lower) + 1e-9);
+  const double cos_hip =
+      std::clamp((s.thigh * s.thigh + d * d - lower * lower) / (2.0 * s.thigh * d), -1.0, 1.0);
+  const double thigh = inclination(hip, target) + arccos(cos_hip);
+  const rig::detail::SinCos t = sin_cos(thigh);
+  const Point knee{hip.x + s.thigh * t.sin, hip.y - s.thigh * t.cos};
+  // The knee-to-contact vector is (we, wn) in the shank's frame, rotated by the shank's
+  // inclination.
+  double shank_inclination = arctan2(target.y - knee.y, target.x - knee.x) - arctan2(wn, we);
+  if (shank_inclination > std::numbers::pi) {
+    shank_inclination -= 2.0 * std::numbers::pi;
+  } else if (shank_inclination < -std::numbers::pi) {
+    shank_inclination += 2.0 * std::numbers::pi;
+  }
+  // The knee cannot bend backwards: a chain that needs it is out of reach.
+  if (thigh - shank_inclination < -1e-9) return false;
+  l.angles.hip = thigh + tilt;
+  l.angles.knee = std::max(0.0, thigh - shank_inclination);
+  if (l.phase == Phase::Flat) {
+    l.angles.ankle = slope - (thigh - l.angles.knee);
+  } else if (l.phase == Phase::Ball) {
+    l.angles.toe = slope - foot_of(tilt, l.angles);
+  }
+  return true;
+}
+
+// The planted foot's phase rules for its ankle and toe (see the header), given the ankle angle
+// the controller integrated to.
+void Walker::settle_foot(int leg, const LegAngles& commanded) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const double tilt = state_.pelvis_tilt;
+  const double slope = terrain_->slope(l.anchor.x);
+  const double sole_length = segments_.heel + segments_.ball;
+  switch (l.phase) {
+    case Phase::Heel:
+      if (foot_of(tilt, l.angles) <= slope) {
+        l.angles.ankle = slope - shank_of(tilt, l.angles);
+        l.phase = Phase::Flat;
+        record(static_cast<rig::Side>(leg), Event::FootFlat, l.anchor);
+      }
+      break;
+    case Phase::Flat: {
+      const double flat = slope - shank_of(tilt, l.angles);
+      if (commanded.ankle < flat) {
+        // The controller lets the ankle dorsiflex slower than the shank rolls over the foot:
+        // the heel lifts (the calf holds the shin back).
+        l.phase = Phase::Ball;
+        const rig::detail::SinCos ground = sin_cos(slope);
+        l.anchor = {l.anchor.x + sole_length * ground.cos, l.anchor.y + sole_length * ground.sin};
+        l.angles.ankle = commanded.ankle;
+        record(static_cast<rig::Side>(leg), Event::HeelOff, l.anchor);
+      } else {
+        l.angles.ankle = flat;
+      }
+      break;
+    }
+    case Phase::Ball:
+      if (foot_of(tilt, l.angles) >= slope) {
+        // The heel came back down.
+        l.phase = Phase::Flat;
+        l.angles.ankle = slope - shank_of(tilt, l.angles);
+        const rig::detail::SinCos ground = sin_cos(slope);
+        l.anchor = {l.anchor.x - sole_length * ground.cos, l.anchor.y - sole_length * ground.sin};
+        record(static_cast<rig::Side>(leg), Event::FootFlat, l.anchor);
+      }
+      l.angles.toe = slope - foot_of(tilt, l.angles);
+      break;
+    case Phase::Swing:
+      break;
+  }
+}
+
+// Height of the carrying leg's knee above the ground, its foot on its anchor, from the leg's points
+// with its hip at the origin.
+[[gnu::always_inline]] inline double Walker::knee_gap(int leg, const LegPoints& p) const {
+  const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const Point c = contact_point(p, l.phase);
+  const Point knee{l.anchor.x + (p.knee.x - c.x), l.anchor.y + (p.knee.y - c.y)};
+  return knee.y - terrain_->height(knee.x);
+}
+
+// A carrying leg whose knee is below the ground folds no further (only after an awkward start):
+// its knee flexion goes back towards `known_good` (or straight) just as far as needed, a flat foot
+// staying flat.
+// The other leg, if swinging, then steps ahead of the body to take the weight, even where its
+// target was behind it (the kneeling leg's foot far behind the hip).
+void Walker::keep_knee_up(int leg, double known_good) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const double slope = terrain_->slope(l.anchor.x);
+  auto gap = [&](double knee) {
+    l.angles.knee = knee;
+    if (l.phase == Phase::Flat) l.angles.ankle = slope - shank_of(state_.pelvis_tilt, l.angles);
+    return knee_gap(leg, hip_at_origin(leg));
+  };
+  const double bad = l.angles.knee;
+  double good = known_good;
+  // Where the ankle moved too, the previous flexion may no longer clear: a straighter knee does.
+  if (gap(good) < 0.0) good = limits_.minimum.knee;
+  if (gap(good) >= 0.0) good = bisect(good, bad, [&](double knee) { return gap(knee) >= 0.0; });
+  gap(good);
+  if (l.phase == Phase::Ball) l.angles.toe = slope - foot_of(state_.pelvis_tilt, l.angles);
+  LegState& other = state_.legs[static_cast<std::size_t>(1 - leg)];
+  if (other.phase == Phase::Swing) {
+    other.target_x = std::max(other.target_x, state_.pelvis.x + 0.5 * step_length_);
+  }
+}
+
+void Walker::clear_ground(int leg, double max_change, double margin, bool with_tip) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const double tilt = state_.pelvis_tilt;
+  // A knee that would touch the ground (a deep crouch after an awkward start) swings the thigh
+  // forward first: folding the knee cannot lift it.
+  auto knee_depth = [&](double hip) {
+    rig::LegAngles a = l.angles;
+    a.hip = hip;
+    const LegPoints p = leg_points(leg, state_.pelvis, a);
+    return terrain_->height(p.knee.x) - p.knee.y + kSwingClearance;
+  };
+  if (knee_depth(l.angles.hip) > 0.0) {
+    double forward = std::min(limits_.maximum.hip, tilt + std::numbers::pi / 2.0);
+    if (knee_depth(forward) <= 0.0) {
+      forward = bisect(forward, l.angles.hip, [&](double hip) { return !(knee_depth(hip) > 0.0); });
+    }
+    l.angles.hip = std::max(l.angles.hip, forward);
+  }
+  const double high = std::min(limits_.maximum.knee, l.angles.knee + max_change);
+  auto depth = [&](double knee) {
+    rig::LegAngles a = l.angles;
+    a.knee = knee;
+    const LegPoints p = leg_points(leg, state_.pelvis, a);
+    return foot_depth(p, ground_under(*terrain_, p), with_tip) + margin;
+  };
+  if (depth(high) > 0.0) {  // cannot clear in one step: fold as far as allowed
+    l.angles.knee = high;
+    return;
+  }
+  l.angles.knee = bisect(high, l.angles.knee, [&](double knee) { return !(depth(knee) > 0.0); });
+}
+
+[[gnu::always_inline]] inline void Walker::update_metrics(int leg, const LegPoints& p,
+                                                          MetricValues& m) {
+  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+  const double tilt = state_.pelvis_tilt;
+  const double thigh = thigh_of(tilt, l.angles);
+  double end = l.sweep_end;
+  if (l.phase == Phase::Swing) {
+    // Arrived when the thigh is where a straight leg's heel would point at the foot target.
+    const Point target{l.target_x, terrain_->height(l.target_x)};
+    end = inclination(p.hip, target) + heel_offset_;
+    l.sweep_end = end;
+  }
+  l.delta = progress(thigh, l.sweep_start, end);
+  m[static_cast<std::size_t>(Metric::Delta)] = l.delta;
+  m[static_cast<std::size_t>(Metric::Hip)] = rig::degrees(l.angles.hip);
+  m[static_cast<std::size_t>(Metric::Knee)] = rig::degrees(l.angles.knee);
+  m[static_cast<std::size_t>(Metric::Ankle)] = rig::degrees(l.angles.ankle);
+  m[static_cast<std::size_t>(Metric::Toe)] = rig::degrees(l.angles.toe);
+  m[static_cast<std::size_t>(Metric::Sole)] =
+      rig::degrees(foot_of(tilt, l.angles) - terrain_->slope(p.ankle.x));
+}
+
+// All eight controllers before any joint moves: they read only the metrics, and side by side
+// (rather than between the two legs' integrations) they took 3 % less of a step.
+void Walker::command(const std::array<MetricValues, 2>& metrics,
+                     std::array<std::array<double, 4>, 2>& commands) {
+  const bool backend = static_cast<bool>(controller_backend_);
+#pragma GCC unroll 2
+  for (std::size_t leg = 0; leg < 2; ++leg) {
+    const LegPhase phase =
+        state_.legs[leg].phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
+    const MetricValues& m = metrics[leg];
+#pragma GCC unroll 4
+    for (std::size_t joint = 0; joint < 4; ++joint) {
+      const auto s = static_cast<std::size_t>(slot(phase, static_cast<Joint>(joint)));
+      commands[leg][joint] = backend ? controller_backend_(static_cast<int>(s), m)
+                                     : controllers_->controllers[s].evaluate(m, workspaces_[s]);
+    }
+  }
+}
+
+Walker::SubSteps Walker::sub_steps(double dt, double time_step) {
+  if (!(dt >= 0.0 && dt <= kLongestAdvance)) {
+    throw std::invalid_argument("advance: dt must be between 0 and 3600 s, got " + number_text(dt));
+  }
+  const double steps = std::ceil(dt / time_step - 1e-9);
+  const int n = std::max(1, static_cast<int>(steps));
+  const double h = dt / n;
+  return {h > 0.0 ? n : 0, h};
+}
+
+void Walker::advance(double dt) {
+  const SubSteps s = sub_steps(dt, time_step_);
+  for (int i = 0; i < s.count; ++i)
+    step(s.length);
+}
+
+void Walker::step(double h) {
+  StepData d;
+  measure(d);
+  command(d.metrics, d.commands);
+  integrate(h, d);
+  finish_step(h, d);
+}
+
+void Walker::measure(StepData& d) {
+  if (!end_points_valid_) {
+    for (int leg = 0; leg < 2; ++leg) {
+      end_points_[static_cast<std::size_t>(leg)] =
+          leg_points(leg, state_.pelvis, state_.legs[static_cast<std::size_t>(leg)].angles);
+    }
+  }
+  std::array<MetricValues, 2>& metrics = d.metrics;
+  for (int leg = 0; leg < 2; ++leg) {
+    update_metrics(leg, end_points_[static_cast<std::size_t>(leg)],
+                   metrics[static_cast<std::size_t>(leg)]);
+  }
+  const auto other_delta = static_cast<std::size_t>(Metric::OtherDelta);
+  const auto delta = static_cast<std::size_t>(Metric::Delta);
+  metrics[0][other_delta] = metrics[1][delta];
+  metrics[1][other_delta] = metrics[0][delta];
+}
+
+void Walker::integrate(double h, StepData& d) {
+  // advance() splits a frame into equal sub-steps, so h changes only with the frame's length:
+  // exp() is recomputed only when h changes.
+  if (!(h == follow_step_)) {
+    follow_step_ = h;
+    follow_ = 1.0 - std::exp(-h / controllers_->inertia);
+  }
+  const double follow = follow_;
+  const Joints minimum = joints(limits_.minimum);
+  const Joints maximum = joints(limits_.maximum);
+  constexpr double per_degree = rig::radians(1.0);
+  for (int leg = 0; leg < 2; ++leg) {
+    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    d.previous[static_cast<std::size_t>(leg)] = l.angles;
+    const std::array<double, 4>& c = d.commands[static_cast<std::size_t>(leg)];
+    // A longer swing of the thigh swings the shank faster in proportion (see ControllerSet).
+    const double reference = controllers_->swing_knee_reference_sweep;
+    const double knee_scale = l.phase == Phase::Swing && reference > 0.0
+                                  ? std::abs(l.sweep_end - l.sweep_start) / reference
+                                  : 1.0;
+    // The hip's command is a share of the sweep per second, the others degrees per second.
+    const Joints target{JointPair{c[0], c[1] * per_degree} *
+                            JointPair{sweep_scale(l.sweep_start, l.sweep_end), knee_scale},
+                        JointPair{c[2], c[3]} * per_degree};
+    Joints velocity = joints(l.velocity);
+    Joints angles = joints(l.angles);
+    auto follow_command = [&](JointPair command, JointPair& v, JointPair& angle, JointPair low,
+                              JointPair high) {
+      // x - x is 0 exactly when x is finite: a NaN or infinite command is no command.
+      const JointPair wanted = select((command - command) == 0.0, command, JointPair{});
+      v += (wanted - v) * follow;
+      angle = clamp(angle + v * h, low, high);
+    };
+    follow_command(target.hip_knee, velocity.hip_knee, angles.hip_knee, minimum.hip_knee,
+                   maximum.hip_knee);
+    follow_command(target.ankle_toe, velocity.ankle_toe, angles.ankle_toe, minimum.ankle_toe,
+                   maximum.ankle_toe);
+    store(l.velocity, velocity);
+    store(l.angles, angles);
+    d.commanded[static_cast<std::size_t>(leg)] = l.angles;
+  }
+  // The carrying foot's rules: with them every joint angle is set for the chain that follows
+  // (finish_step() places the legs from here).
+  if (state_.lead >= 0) {
+    settle_foot(state_.lead, d.commanded[static_cast<std::size_t>(state_.lead)]);
+  }
+}
+
+void Walker::finish_step(double h, StepData& d) {
+  const double tilt = state_.pelvis_tilt;
+  const std::array<LegAngles, 2>& previous = d.previous;
+  const std::array<LegAngles, 2>& commanded = d.commanded;
+  if (state_.lead < 0) {
+    // Airborne (only after an awkward start): fall until a foot touches.
+    state_.fall_velocity += kGravity * h;
+    state_.pelvis.y -= state_.fall_velocity * h;
+  } else {
+    // The leg planted first carries the pelvis, through double support too: the chain grows
+    // from its foot, so a planted foot never slides and the body's motion stays continuous.
+    const int lead = state_.lead;
+    LegPoints at_origin = hip_at_origin(lead);
+    if (knee_gap(lead, at_origin) < 0.0) {
+      keep_knee_up(lead, previous[static_cast<std::size_t>(lead)].knee);
+      at_origin = hip_at_origin(lead);
+    }
+    place_pelvis(lead, at_origin);
+  }
+  // A swinging leg placed below with the pelvis carried by the other leg: its points stand (its
+  // heel and ball above the ground), and this is the ground's height under its toe tip.
+  std::array<std::optional<double>, 2> placed_tip_ground;
+  for (int leg = 0; leg < 2; ++leg) {
+    if (leg == state_.lead) continue;
+    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    if (l.phase == Phase::Swing) {
+      // Swing foot: it lands once the leg arrives in front of the body; before that the knee
+      // folds just enough to keep the foot off the ground (a clearance reflex), and only a foot
+      // the reflex cannot lift touches down early.
+      LegPoints p = leg_points(leg, state_.pelvis, l.angles);
+      // A swing that drags on (a leg stuck in a deep crouch after an awkward start) gives up
+      // and puts the foot down where it is.
+      const bool arriving = l.delta >= kLandingDelta || state_.lead < 0 ||
+                            state_.time - l.swing_start > kLongestSwing;
+      const double knee_clearance = p.knee.y - terrain_->height(p.knee.x);
+      // The clearance wanted grows from nothing at toe off and fades again before landing, so
+      // the reflex never jerks the knee when the foot leaves or reaches the ground.
+      const double margin = kSwingClearance * std::clamp((l.delta + 1.0) / 0.5, 0.0, 1.0) *
+                            std::clamp((kLandingDelta - l.delta) / 0.3, 0.0, 1.0);
+      FootGround ground = ground_under(*terrain_, p);
+      if ((!arriving && foot_depth(p, ground) > -margin) || knee_clearance < kSwingClearance) {
+        clear_ground(leg, kReflexSpeed * h, margin);
+        p = leg_points(leg, state_.pelvis, l.angles);
+        ground = ground_under(*terrain_, p);
+      }
+      const double heel_depth = ground.heel - p.heel.y;
+      const double ball_depth = ground.ball - p.ball.y;
+      if (heel_depth < 0.0 && ball_depth < 0.0) {
+        if (state_.lead >= 0) {
+          placed_tip_ground[static_cast<std::size_t>(leg)] = ground.tip;
+          end_points_[static_cast<std::size_t>(leg)] = p;
+        }
+        continue;
+      }
+      if (heel_depth >= ball_depth) {
+        strike(leg, Phase::Heel, {p.heel.x, ground.heel});
+      } else {
+        strike(leg, Phase::Ball, {p.ball.x, ground.ball});
+      }
+      if (state_.lead == leg) {
+        settle_foot(leg, l.angles);
+        place_pelvis(leg);
+        continue;
+      }
+    }
+    // The newly planted foot: hip and knee close the chain onto it (IK) while its ankle
+    // follows its controller; once it is flat, the carrying leg lifts off and hands over.
+    if (!close_chain(leg)) {
+      hand_over(state_.lead);
+      break;
+    }
+    const Phase closed_in = l.phase;
+    settle_foot(leg, commanded[static_cast<std::size_t>(leg)]);
+    // On the heel or the ball with no change of phase, the foot's rules changed nothing the
+    // chain depends on (a ball's toes rest as the chain left them): it is still closed.
+    bool reached = (l.phase == closed_in && l.phase != Phase::Flat) || close_chain(leg);
+    if (reached && l.phase == Phase::Ball &&
+        foot_of(tilt, l.angles) >= terrain_->slope(l.anchor.x)) {
+      // The chain closed with the heel back on the ground.
+      settle_foot(leg, l.angles);
+      reached = close_chain(leg);
+    }
+    if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball) hand_over(state_.lead);
+    break;
+  }
+  for (int leg = 0; leg < 2; ++leg) {
+    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    const std::optional<double> tip_ground = placed_tip_ground[static_cast<std::size_t>(leg)];
+    const bool stands = tip_ground.has_value();
+    // Placed where the next step starts from (a standing swing foot is there already).
+    LegPoints& p = end_points_[static_cast<std::size_t>(leg)];
+    if (!stands) p = leg_points(leg, state_.pelvis, l.angles);
+    // A foot that has just lifted off can sit a hair below the ground once the other foot takes
+    // the pelvis: lift it at once. (Its toe tip is left to the toes, which bend up below.)
+    if (!stands && l.phase == Phase::Swing && state_.lead >= 0 &&
+        foot_depth(p, ground_under(*terrain_, p), false) > 0.0) {
+      clear_ground(leg, limits_.maximum.knee, 0.0, false);
+      p = leg_points(leg, state_.pelvis, l.angles);
+    }
+    // Toes never dip below the ground: they bend up where the ground holds them.
+    const double ground = stands ? *tip_ground : terrain_->height(p.tip.x);
+    if (p.tip.y < ground) {
+      const double rise = std::clamp((ground - p.ball.y) / segments_.toe, -1.0, 1.0);
+      l.angles.toe = std::max(l.angles.toe, arcsin(rise) - foot_of(tilt, l.angles));
+      p = leg_points(leg, state_.pelvis, l.angles);
+    }
+    // What a joint remembers as its speed is capped: a jump made in one step (the chain closing
+    // onto a foot put down far from the body after an awkward start) must not carry on as a
+    // velocity, swinging the leg through a turn in a few steps and the pelvis with it.
+    const Joints fastest = joints(kMaxJointSpeed);
+    const Joints now = joints(l.angles);
+    const Joints before = joints(previous[static_cast<std::size_t>(leg)]);
+    auto speed = [h](JointPair to, JointPair from, JointPair most) {
+      return clamp((to - from) / h, -most, most);
+    };
+    store(l.velocity, {speed(now.hip_knee, before.hip_knee, fastest.hip_knee),
+                       speed(now.ankle_toe, before.ankle_toe, fastest.ankle_toe)});
+  }
+  end_points_valid_ = true;
+  state_.time += h;
+}
+
+}  // namespace fuzzygait::gait
