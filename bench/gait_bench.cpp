@@ -1,6 +1,6 @@
 // `fuzzygait-bench gait`: character-steps per second on one core with a controller set, for a lone
 // walker and for a crowd stepped together (gait::Crowd), each against the same walk with the same
-// controllers evaluated through fuzzylite in the loop (WalkerOptions::controller_backend). The
+// controllers evaluated through fuzzylite in the loop (a controller back end). The
 // walks must give the same motion before anything is timed: the controllers' outputs agree within
 // 1e-9 call by call, the walks' heel strikes (time and place), final pelvis and joint angles are
 // identical, and every character of a crowd walks to the bit as it does alone. The last two lines
@@ -29,6 +29,7 @@
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/rig/rig.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
+#include "runtime/gait/walker_stages.hpp"
 #include "timing.hpp"
 
 namespace fuzzygait::bench {
@@ -92,11 +93,22 @@ int steps_per_frame(const gait::WalkerOptions& options) {
   return std::max(1, static_cast<int>(std::ceil(kFrame / options.time_step - 1e-9)));
 }
 
+// One side of a comparison: the walkers' options and, for fuzzylite's side, the controller back
+// end that evaluates their controllers (null: fuzzygait's own).
+struct Side {
+  gait::WalkerOptions options;
+  const gait::detail::ControllerBackend* backend = nullptr;
+};
+
+gait::Walker make_walker(const gait::ControllerSet& set, const Side& side,
+                         const terrain::Terrain& ground) {
+  return gait::detail::WalkerStages::make_walker(set, side.options, ground, side.backend);
+}
+
 // A fresh walker on flat ground, past its warm-up.
-gait::Walker walker_after_warm_up(const gait::ControllerSet& set,
-                                  const gait::WalkerOptions& options,
+gait::Walker walker_after_warm_up(const gait::ControllerSet& set, const Side& side,
                                   const terrain::Terrain& ground, double warm_up) {
-  gait::Walker walker(set, options, ground);
+  gait::Walker walker = make_walker(set, side, ground);
   for (double t = 0.0; t < warm_up; t += kFrame) {
     walker.advance(kFrame);
     walker.clear_events();
@@ -130,10 +142,10 @@ struct InTurn {
 };
 
 // Frames that take about `min_seconds` on a fresh walker, from 16 frames up.
-long frames_for(const gait::ControllerSet& set, const gait::WalkerOptions& options,
-                const terrain::Terrain& ground, const Options& o) {
+long frames_for(const gait::ControllerSet& set, const Side& side, const terrain::Terrain& ground,
+                const Options& o) {
   return calibrate(16, o.min_seconds, [&](long frames) {
-    gait::Walker walker = walker_after_warm_up(set, options, ground, o.warm_up);
+    gait::Walker walker = walker_after_warm_up(set, side, ground, o.warm_up);
     return seconds_for(walker, frames);
   });
 }
@@ -144,9 +156,9 @@ struct Trace {
   std::vector<rig::Pose> poses;
 };
 
-Trace trace(const gait::ControllerSet& set, const gait::WalkerOptions& options,
-            const terrain::Terrain& ground, double seconds) {
-  gait::Walker walker(set, options, ground);
+Trace trace(const gait::ControllerSet& set, const Side& side, const terrain::Terrain& ground,
+            double seconds) {
+  gait::Walker walker = make_walker(set, side, ground);
   Trace t;
   for (double time = 0.0; time < seconds; time += kFrame) {
     walker.advance(kFrame);
@@ -171,8 +183,8 @@ void check_motion(const gait::ControllerSet& set, const gait::WalkerOptions& opt
   }
   double output_difference = 0.0;
   long calls = 0;
-  gait::WalkerOptions checked = options;
-  checked.controller_backend = [&](int slot, const gait::MetricValues& metrics) {
+  gait::detail::ControllerBackend checked;
+  checked.evaluate = [&](int slot, const gait::MetricValues& metrics) {
     const auto s = static_cast<std::size_t>(slot);
     const double reference = fuzzylite.evaluate(slot, metrics);
     const double ours = set.controllers[s].evaluate(metrics, workspaces[s]);
@@ -183,8 +195,8 @@ void check_motion(const gait::ControllerSet& set, const gait::WalkerOptions& opt
     ++calls;
     return reference;
   };
-  const Trace expected = trace(set, checked, ground, o.check_seconds);
-  const Trace got = trace(set, options, ground, o.check_seconds);
+  const Trace expected = trace(set, {options, &checked}, ground, o.check_seconds);
+  const Trace got = trace(set, {options}, ground, o.check_seconds);
 
   // The figures printed, and exact comparisons for the verdict (a NaN compares unequal too).
   double strike_time = 0.0;
@@ -312,12 +324,15 @@ void check_crowd(const gait::ControllerSet& set, const gait::WalkerOptions& opti
 // Returns the medians, ns a character-step: {ours, fuzzylite's}.
 std::pair<double, double> run_crowd_benchmark(const gait::ControllerSet& set,
                                               const gait::WalkerOptions& options,
-                                              const gait::WalkerOptions& through_fuzzylite,
+                                              const gait::detail::ControllerBackend& fuzzylite,
                                               const terrain::Terrain& ground, const Options& o) {
   check_crowd(set, options, ground, o);
   const std::vector<gait::WalkerOptions> characters = crowd_characters(options, o.crowd);
   gait::Crowd ours(set, ground, characters);
-  gait::Crowd theirs(set, ground, crowd_characters(through_fuzzylite, o.crowd));
+  const std::vector<const gait::detail::ControllerBackend*> through_fuzzylite(characters.size(),
+                                                                              &fuzzylite);
+  gait::Crowd theirs =
+      gait::detail::WalkerStages::make_crowd(set, ground, characters, through_fuzzylite);
   // The same characters as lone walkers, advanced one after another every frame.
   InTurn in_turn;
   for (const gait::WalkerOptions& c : characters)
@@ -371,10 +386,10 @@ void run_gait_benchmark(const Options& o) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   const gait::WalkerOptions options;
   FuzzyliteControllers fuzzylite(set);
-  gait::WalkerOptions through_fuzzylite = options;
-  through_fuzzylite.controller_backend = [&fuzzylite](int slot, const gait::MetricValues& m) {
-    return fuzzylite.evaluate(slot, m);
-  };
+  const gait::detail::ControllerBackend fuzzylite_backend{
+      [&fuzzylite](int slot, const gait::MetricValues& m) { return fuzzylite.evaluate(slot, m); }};
+  const Side own{options};
+  const Side through_fuzzylite{options, &fuzzylite_backend};
 
   const double steps_in_frame = steps_per_frame(options);
   std::printf(
@@ -385,18 +400,18 @@ void run_gait_benchmark(const Options& o) {
       fl::fuzzylite::version().c_str());
   check_motion(set, options, ground, o);
 
-  const long fuzzygait_frames = frames_for(set, options, ground, o);
+  const long fuzzygait_frames = frames_for(set, own, ground, o);
   const long fuzzylite_frames = frames_for(set, through_fuzzylite, ground, o);
   std::vector<double> fuzzygait_ns;
   std::vector<double> fuzzylite_ns;
-  auto time_side = [&](const gait::WalkerOptions& side, long frames, std::vector<double>& ns) {
+  auto time_side = [&](const Side& side, long frames, std::vector<double>& ns) {
     gait::Walker walker = walker_after_warm_up(set, side, ground, o.warm_up);
     const double seconds = seconds_for(walker, frames);
     ns.push_back(1e9 * seconds / (static_cast<double>(frames) * steps_in_frame));
   };
   for (int r = 0; r < o.repetitions; ++r) {
     run_alternating(
-        r, [&] { time_side(options, fuzzygait_frames, fuzzygait_ns); },
+        r, [&] { time_side(own, fuzzygait_frames, fuzzygait_ns); },
         [&] { time_side(through_fuzzylite, fuzzylite_frames, fuzzylite_ns); });
     std::printf(
         "run %d: fuzzygait %8.1f ns per step (%ld steps), fuzzylite %8.1f ns per step "
@@ -417,7 +432,7 @@ void run_gait_benchmark(const Options& o) {
   double headline_fuzzylite = theirs;
   if (o.crowd > 0) {
     std::tie(headline, headline_fuzzylite) =
-        run_crowd_benchmark(set, options, through_fuzzylite, ground, o);
+        run_crowd_benchmark(set, options, fuzzylite_backend, ground, o);
   }
   std::printf("headline: %s\n", o.crowd > 0 ? "the crowd's character-steps (a lone walker's above)"
                                             : "the lone walker's steps");

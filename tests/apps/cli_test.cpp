@@ -76,7 +76,7 @@ TEST(WalkCommand, BadOptionsAreRefusedWithTheReason) {
   };
   refused("--step 3", "step length must be between 0.427 m (0.46 leg lengths, the shortest");
   refused("--style heavy --step 0.5", "(0.62 leg lengths, the shortest 'heavy' walks)");
-  refused("--step 0.3", "got 0.300 m");
+  refused("--step 0.3", "got 0.3 m");
   refused("--step nan", "step");
   refused("--stature 0", "stature must be between 0.5 and 3.0 m");
   refused("--thigh -0.1 --stature 1.7", "segment 'thigh'");

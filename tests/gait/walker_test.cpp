@@ -14,6 +14,7 @@
 #include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/gait/walker.hpp"
+#include "runtime/gait/walker_stages.hpp"
 #include "support/allocation_counter.hpp"
 #include "support/walks.hpp"
 
@@ -130,21 +131,23 @@ TEST(Walker, BadInputGetsClearErrors) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("'shank'"), std::string::npos);
   }
+  // The per-frame calls refuse a dt no frame has (NaN, negative, a broken timer's) without
+  // throwing, leaving the walker as it was: no days of sub-steps or an overflowing count of them.
   gait::Walker w = make_walker(ground);
-  EXPECT_THROW(w.advance(std::nan("")), std::invalid_argument);
-  EXPECT_THROW(w.advance(-1.0), std::invalid_argument);
-  // A dt no frame has (a broken timer) is an error, not days of sub-steps or an overflowing count
-  // of them; the walker is left as it was.
-  const double before = w.time();
-  for (double dt : {3600.5, 1e12, 1e300, std::numeric_limits<double>::infinity()}) {
-    try {
-      w.advance(dt);
-      ADD_FAILURE() << dt;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find("between 0 and 3600 s"), std::string::npos) << dt;
-    }
+  const gait::WalkerState before = w.state();
+  for (double dt : {std::nan(""), -1.0, -0.0 - 1e-300, 3600.5, 1e12, 1e300,
+                    std::numeric_limits<double>::infinity()}) {
+    EXPECT_FALSE(w.advance(dt)) << dt;
   }
-  EXPECT_EQ(w.time(), before);
+  EXPECT_EQ(test::state_difference(w.state(), before), "");
+  EXPECT_TRUE(w.advance(0.0));
+  EXPECT_EQ(test::state_difference(w.state(), before), "");
+  static_assert(
+      noexcept(w.advance(0.0))&& noexcept(w.set_step_length(0.7))&& noexcept(w.pose())&& noexcept(
+          w.points(
+              rig::Side::Left))&& noexcept(w
+                                               .in_contact(
+                                                   rig::Side::Left))&& noexcept(w.clear_events()));
   o.segments = rig::segments_from_stature(1.75);
   // Joint limits that cannot clamp anything (clamping to them was undefined).
   for (double knee : {std::nan(""), std::numeric_limits<double>::infinity(), 3.0}) {
@@ -161,21 +164,31 @@ TEST(Walker, BadInputGetsClearErrors) {
     o.time_step = h;
     EXPECT_THROW(gait::Walker(default_set(), o, ground), std::invalid_argument) << h;
   }
-  EXPECT_THROW(w.set_step_length(-0.1), std::invalid_argument);
-  // Steps shorter than the set's shortest (0.46 leg lengths for the default) are refused,
-  // naming the limit; the limit itself walks.
+  // Step lengths are clamped to what the set walks and the legs reach (0.46 to 1.2 leg lengths
+  // for the default); NaN changes nothing. The limits themselves are taken.
   const double shortest = gait::Walker::min_step_length(default_set(), w.segments());
+  const double longest = gait::Walker::max_step_length(w.segments());
   EXPECT_NEAR(shortest, 0.46 * w.segments().leg_length(), 1e-12);
+  EXPECT_EQ(w.min_step_length(), shortest);
+  EXPECT_EQ(w.max_step_length(), longest);
+  EXPECT_EQ(w.set_step_length(-0.1), shortest);
+  EXPECT_EQ(w.set_step_length(0.99 * shortest), shortest);
+  EXPECT_EQ(w.set_step_length(std::nan("")), shortest);
+  EXPECT_EQ(w.set_step_length(1e300), longest);
+  EXPECT_EQ(w.set_step_length(0.65), 0.65);
+  EXPECT_EQ(w.step_length(), 0.65);
+  EXPECT_EQ(w.set_step_length(std::nan("")), 0.65);
+  // At construction a step out of range is an error that names both ends.
+  o.time_step = 1.0 / 240.0;
+  o.step_length = 0.99 * shortest;
   try {
-    w.set_step_length(0.99 * shortest);
+    gait::Walker walker(default_set(), o, ground);
     ADD_FAILURE() << "a step of 0.45 leg lengths was taken";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("(0.46 leg lengths, the shortest 'default' walks)"),
               std::string::npos)
         << e.what();
   }
-  EXPECT_NO_THROW(w.set_step_length(shortest));
-  EXPECT_NO_THROW(w.set_step_length(gait::Walker::max_step_length(w.segments())));
 }
 
 TEST(Walker, AdvancingAllocatesNothing) {
@@ -224,15 +237,13 @@ TEST(Walker, NonFiniteCommandsAreNoCommand) {
           return ++calls % 3 == 0 ? (zero ? 0.0 : odd[s]) : answer;
         };
   };
-  gait::WalkerOptions with_odd;
-  with_odd.controller_backend = backend(false);
-  gait::WalkerOptions with_zero;
-  with_zero.controller_backend = backend(true);
   for (const gait::StartPose start : {gait::StartPose{}, gait::StartPose{true, 3, 0.0}}) {
-    with_odd.start = start;
-    with_zero.start = start;
-    gait::Walker a(set, with_odd, ground);
-    gait::Walker b(set, with_zero, ground);
+    gait::WalkerOptions options;
+    options.start = start;
+    const gait::detail::ControllerBackend with_odd{backend(false)};
+    const gait::detail::ControllerBackend with_zero{backend(true)};
+    gait::Walker a = gait::detail::WalkerStages::make_walker(set, options, ground, &with_odd);
+    gait::Walker b = gait::detail::WalkerStages::make_walker(set, options, ground, &with_zero);
     EXPECT_EQ(test::walk_side_by_side(a, b, 300), "");
     EXPECT_GE(a.state().heel_strikes, 5u);
     EXPECT_TRUE(std::isfinite(a.state().pelvis.x) && std::isfinite(a.state().pelvis.y));
@@ -254,8 +265,8 @@ TEST(Walker, FastPathWalksAsTheGeneralEvaluator) {
       workspaces.push_back(evaluators.back().make_workspace());
     }
     long calls = 0;
-    gait::WalkerOptions general;
-    general.controller_backend = [&](int slot, const gait::MetricValues& metrics) {
+    gait::detail::ControllerBackend general;
+    general.evaluate = [&](int slot, const gait::MetricValues& metrics) {
       const auto s = static_cast<std::size_t>(slot);
       const gait::Controller& c = set.controllers[s];
       double in[2] = {};
@@ -268,11 +279,10 @@ TEST(Walker, FastPathWalksAsTheGeneralEvaluator) {
       return out;
     };
     for (const gait::StartPose start : {gait::StartPose{}, gait::StartPose{true, 7, 0.0}}) {
-      gait::WalkerOptions own;
-      own.start = start;
-      general.start = start;
-      gait::Walker a(set, own, ground);
-      gait::Walker b(set, general, ground);
+      gait::WalkerOptions options;
+      options.start = start;
+      gait::Walker a(set, options, ground);
+      gait::Walker b = gait::detail::WalkerStages::make_walker(set, options, ground, &general);
       EXPECT_EQ(test::walk_side_by_side(a, b, 600), "")
           << name << ", start " << (start.random ? "random" : "default");
       EXPECT_GE(a.state().heel_strikes, 10u) << name;

@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "fuzzygait/io/files.hpp"
+#include "runtime/common/format.hpp"
 
 namespace fuzzygait::plot::svg {
 
@@ -1586,18 +1587,7 @@ std::string escape_xml(std::string_view text) {
 }
 
 std::string format_number(double value, int decimals) {
-  if (!std::isfinite(value)) return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
-  std::array<char, 400> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
-                                    std::chars_format::fixed, std::clamp(decimals, 0, 17));
-  std::string text(buffer.data(), result.ptr);
-  if (text.find('.') != std::string::npos) {
-    while (text.back() == '0')
-      text.pop_back();
-    if (text.back() == '.') text.pop_back();
-  }
-  if (text == "-0") text = "0";
-  return text;
+  return common::number_text(value, decimals);
 }
 
 std::vector<double> nice_ticks(double min, double max, int target_count) {

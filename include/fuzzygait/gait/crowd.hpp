@@ -13,6 +13,10 @@
 
 #include "fuzzygait/gait/walker.hpp"
 
+namespace fuzzygait::gait::detail {
+struct StepData;  // what a time step hands from stage to stage (internal)
+}  // namespace fuzzygait::gait::detail
+
 namespace fuzzygait::gait {
 
 class Crowd {
@@ -23,34 +27,43 @@ class Crowd {
   // step together).
   Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
         std::span<const WalkerOptions> characters);
+  ~Crowd();
+  Crowd(Crowd&&) noexcept;
+  Crowd& operator=(Crowd&&) noexcept;
 
-  std::size_t size() const { return walkers_.size(); }
-  // Advances every character by dt, in the sub-steps Walker::advance() takes. No allocation, no
-  // file access. Throws std::invalid_argument for a dt that is NaN, negative or over an hour.
-  void advance(double dt);
+  std::size_t size() const noexcept { return walkers_.size(); }
 
-  // A character: its pose, points, state and events, read as a Walker's.
-  const Walker& operator[](std::size_t i) const { return walkers_[i]; }
-  // Walker::set_step_length() of character i (throws std::out_of_range past the crowd).
-  void set_step_length(std::size_t i, double metres) { walkers_.at(i).set_step_length(metres); }
+  // Per frame: none of these throws or allocates.
+
+  // Advances every character by dt, in the sub-steps Walker::advance() takes. Returns false and
+  // changes nothing when dt is NaN, negative or longer than Walker::kLongestAdvance.
+  bool advance(double dt) noexcept;
+  // A character (i < size()): its pose, points, state and events, read as a Walker's.
+  const Walker& operator[](std::size_t i) const noexcept { return walkers_[i]; }
+  // Walker::set_step_length() of character i: the step length now commanded, or NaN (nothing
+  // changed) when i is not a character of the crowd.
+  double set_step_length(std::size_t i, double metres) noexcept;
   // Every character's Walker::clear_events().
-  void clear_events();
+  void clear_events() noexcept;
 
   // Whether the controllers are evaluated across characters (every controller of the set on the
-  // fast path and no character with a controller back end); otherwise each character evaluates
-  // its own, as a Walker does.
-  bool batched_controllers() const { return batched_; }
+  // fast path); otherwise each character evaluates its own, as a Walker does.
+  bool batched_controllers() const noexcept { return batched_; }
 
   // Characters stepped together: their data stays in the core's caches through a frame's stages.
   static constexpr std::size_t kBlock = 32;
 
  private:
+  friend struct detail::WalkerStages;
+  Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
+        std::span<const WalkerOptions> characters,
+        std::span<const detail::ControllerBackend* const> backends);
   void step(std::size_t first, std::size_t count, double h);
   void command(std::size_t first, std::size_t count);
   void place_legs(std::size_t first, std::size_t count);
 
   std::vector<Walker> walkers_;
-  std::vector<Walker::StepData> steps_;  // a block's
+  std::vector<detail::StepData> steps_;  // a block's
   bool batched_ = false;
   double time_step_ = 0.0;
   // Each slot's controller and the metrics it reads. A block's legs take lanes by phase (swing,

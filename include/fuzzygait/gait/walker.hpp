@@ -27,7 +27,6 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "fuzzygait/gait/controllers.hpp"
@@ -90,11 +89,6 @@ struct WalkerOptions {
   double time_step = 1.0 / 240.0;  // seconds (0.00001 to 0.05); advance() subdivides longer frames
   rig::JointLimits limits;
   StartPose start;
-  // Another fuzzy back end for the controllers, e.g. a reference implementation to compare
-  // with: given a slot (see slot()) and the leg's metrics, it returns what that controller
-  // would. Called in place of the set's own engines, eight times a step, so it should not
-  // allocate. Empty (the default): the set's engines.
-  std::function<double(int slot, const MetricValues& metrics)> controller_backend;
 };
 
 struct EventRecord {
@@ -104,65 +98,59 @@ struct EventRecord {
   rig::Point where;
 };
 
+namespace detail {
+struct WalkerStages;       // the stages of a time step, shared with Crowd (internal)
+struct ControllerBackend;  // another evaluator of the controllers, for comparisons (internal)
+}  // namespace detail
+
 class Walker {
  public:
   // The controller set and terrain must outlive the walker and stay unchanged while it walks (it
-  // keeps a workspace made for each of the set's controllers). Throws std::invalid_argument for
-  // a bad rig, or a step length outside min_step_length() to max_step_length() (it names them).
+  // keeps a workspace made for each of the set's controllers). Throws std::invalid_argument naming
+  // the field for a bad rig or joint limits, a time step outside 0.00001-0.05 s, an incomplete
+  // set, or a step length outside min_step_length() to max_step_length().
   Walker(const ControllerSet& controllers, const WalkerOptions& options,
          const terrain::Terrain& terrain);
 
-  // Changes the commanded step length; it applies from the next foot placement. Throws
-  // std::invalid_argument outside min_step_length() to max_step_length().
-  void set_step_length(double metres);
-  double step_length() const { return step_length_; }
+  // Per frame: none of these throws or allocates.
 
-  // Advances by dt seconds in equal sub-steps no longer than the time step. No allocation, no
-  // file access. Throws std::invalid_argument for a dt that is NaN, negative or over an hour.
-  void advance(double dt);
+  // Advances by dt seconds in equal sub-steps no longer than the time step. Returns false and
+  // changes nothing when dt is NaN, negative or longer than an hour (kLongestAdvance).
+  bool advance(double dt) noexcept;
+  // Commands a step length from the next foot placement on: `metres` clamped to
+  // [min_step_length(), max_step_length()]. Returns the step length now commanded (the old one,
+  // unchanged, for NaN).
+  double set_step_length(double metres) noexcept;
+  double step_length() const noexcept { return step_length_; }
+  double min_step_length() const noexcept;
+  double max_step_length() const noexcept;
 
-  const WalkerState& state() const { return state_; }
-  rig::Pose pose() const;
-  rig::LegPoints points(rig::Side side) const;
-  Phase phase(rig::Side side) const { return state_.legs[rig::index(side)].phase; }
-  bool in_contact(rig::Side side) const { return phase(side) != Phase::Swing; }
-  double time() const { return state_.time; }
-  const rig::Segments& segments() const { return segments_; }
+  const WalkerState& state() const noexcept { return state_; }
+  rig::Pose pose() const noexcept;
+  rig::LegPoints points(rig::Side side) const noexcept;
+  Phase phase(rig::Side side) const noexcept { return state_.legs[rig::index(side)].phase; }
+  bool in_contact(rig::Side side) const noexcept { return phase(side) != Phase::Swing; }
+  double time() const noexcept { return state_.time; }
+  const rig::Segments& segments() const noexcept { return segments_; }
 
-  // Contact events since the last clear_events() (capacity fixed at construction; oldest
-  // dropped).
-  const std::vector<EventRecord>& events() const { return events_; }
-  void clear_events() { events_.clear(); }
+  // Contact events since the last clear_events(), at most kEventCapacity (the oldest dropped).
+  const std::vector<EventRecord>& events() const noexcept { return events_; }
+  void clear_events() noexcept { events_.clear(); }
+  static constexpr std::size_t kEventCapacity = 64;
+  static constexpr double kLongestAdvance = 3600.0;  // s, the longest dt advance() takes
 
-  // Shortest step the walker takes with these controllers (metres): the set's shortest_step
-  // leg lengths (0.46 for the default set). Shorter steps lose the gait's rhythm (the heel lifts
-  // at once after foot flat, the pelvis rolls back, the feet slide), so they are refused.
+  // Shortest step these controllers walk for these legs (metres): the set's shortest_step leg
+  // lengths (0.46 for the default set); shorter steps lose the gait's rhythm.
   static double min_step_length(const ControllerSet& controllers, const rig::Segments& segments);
-  // Longest step the legs can make (metres): 1.2 leg lengths.
+  // Longest step the legs reach (metres): 1.2 leg lengths.
   static double max_step_length(const rig::Segments& segments);
 
  private:
-  friend class Crowd;  // runs the stages of step() for many characters at once
+  friend struct detail::WalkerStages;
+  friend class Crowd;
 
-  // What a time step hands from stage to stage.
-  struct StepData {
-    std::array<MetricValues, 2> metrics;
-    std::array<std::array<double, 4>, 2> commands;  // [leg][joint]: the controllers' outputs
-    std::array<rig::LegAngles, 2> previous;         // joint angles before the step
-    std::array<rig::LegAngles, 2> commanded;        // and as the controllers turned them
-  };
-  // advance(dt)'s equal sub-steps, none longer than time_step (throws for a bad dt).
-  struct SubSteps {
-    int count;
-    double length;
-  };
-  static SubSteps sub_steps(double dt, double time_step);
-  // One time step, in stages: measure() the metrics, command() the controllers, integrate() the
-  // joint velocities (and the carrying foot's rules), finish_step() the chain and the contacts.
-  void step(double h);
-  void measure(StepData& d);
-  void integrate(double h, StepData& d);
-  void finish_step(double h, StepData& d);
+  Walker(const ControllerSet& controllers, const WalkerOptions& options,
+         const terrain::Terrain& terrain, const detail::ControllerBackend* backend);
   void start(const StartPose& start_pose);
   void warm_up(double seconds);
   void record(rig::Side side, Event event, rig::Point where);
@@ -175,18 +163,10 @@ class Walker {
   double stance_target() const;
   void keep_knee_up(int leg, double known_good);
   void clear_ground(int leg, double max_change, double margin, bool with_tip = true);
-  // Each leg's four controllers for its phase, [leg][joint]: hip, knee, ankle, toe.
-  void command(const std::array<MetricValues, 2>& metrics,
-               std::array<std::array<double, 4>, 2>& commands);
-  // Defined inline in walker.cpp, the only file that calls them: inlined into the stages.
-  inline void place_pelvis(int leg, const rig::LegPoints& at_origin);
-  inline rig::LegPoints hip_at_origin(int leg);
-  inline double knee_gap(int leg, const rig::LegPoints& at_origin) const;
-  inline void update_metrics(int leg, const rig::LegPoints& points, MetricValues& metrics);
-  inline rig::LegPoints leg_points(int leg, rig::Point hip, const rig::LegAngles& angles);
 
   const ControllerSet* controllers_;
   const terrain::Terrain* terrain_;
+  const detail::ControllerBackend* backend_ = nullptr;  // null: the set's own engines
   rig::Segments segments_;
   rig::JointLimits limits_;
   double step_length_;
@@ -195,22 +175,13 @@ class Walker {
   double follow_ = 0.0;       // share of the way a joint's velocity goes to its command in h
   double heel_offset_ = 0.0;
   WalkerState state_;
-  // One per slot, on the heap: the fast path never touches them, and kept in the walker they
-  // made it 3.8 KB, which a crowd's characters stream through the caches every frame.
+  // One per slot, on the heap: the fast path never reads them, and a crowd streams its walkers
+  // through the caches every frame.
   std::vector<fuzzy::Workspace> workspaces_;
-  std::function<double(int, const MetricValues&)> controller_backend_;
-  // Each leg's segment orientations when their sines and cosines were last computed: a time
-  // step places a leg several times, mostly with unchanged angles (see leg_points()).
-  struct TrigCache {
-    rig::LegOrientation orientation;  // zero, as rig::LegTrig's defaults
-    rig::LegTrig trig;
-    // All four when the thigh, shank or foot turned; only the toes' when they alone did.
-    void update(const rig::LegOrientation& o);
-  };
-  rig::LegOrientation orientation(int leg) const {
-    return rig::orientation(state_.pelvis_tilt, state_.legs[static_cast<std::size_t>(leg)].angles);
-  }
-  std::array<TrigCache, 2> trig_{};
+  // Each leg's segment orientations when their sines and cosines were last computed, and those:
+  // a time step places a leg several times, mostly with unchanged angles.
+  std::array<rig::LegOrientation, 2> trig_orientation_{};
+  std::array<rig::LegTrig, 2> trig_{};
   // Each leg's points as the last time step left them: the next one starts from them.
   std::array<rig::LegPoints, 2> end_points_{};
   bool end_points_valid_ = false;

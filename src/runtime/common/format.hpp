@@ -8,5 +8,8 @@
 namespace fuzzygait::common {
 
 std::string number_text(double value);
+// Rounded to at most `decimals` decimals (0 to 17), without trailing zeros or a "-0": "0.427"
+// for 0.42665 with 3, "12.5", "3".
+std::string number_text(double value, int decimals);
 
 }  // namespace fuzzygait::common

@@ -1,18 +1,31 @@
 #include "fuzzygait/gait/crowd.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "runtime/gait/walker_stages.hpp"
 #include "runtime/rig/trigonometry.hpp"
 
 namespace fuzzygait::gait {
 namespace {
 constexpr std::size_t kLanesPerSlot = 2 * Crowd::kBlock;
 }
+using detail::StepData;
+using detail::WalkerStages;
 
 Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
-             std::span<const WalkerOptions> characters) {
+             std::span<const WalkerOptions> characters)
+    : Crowd(controllers, terrain, characters, {}) {}
+
+Crowd::~Crowd() = default;
+Crowd::Crowd(Crowd&&) noexcept = default;
+Crowd& Crowd::operator=(Crowd&&) noexcept = default;
+
+Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
+             std::span<const WalkerOptions> characters,
+             std::span<const detail::ControllerBackend* const> backends) {
   walkers_.reserve(characters.size());
   for (std::size_t i = 0; i < characters.size(); ++i) {
     if (i > 0 && !(characters[i].time_step == characters[0].time_step)) {
@@ -21,7 +34,8 @@ Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
                                   "must be equal");
     }
     try {
-      walkers_.emplace_back(controllers, characters[i], terrain);
+      walkers_.push_back(WalkerStages::make_walker(controllers, characters[i], terrain,
+                                                   i < backends.size() ? backends[i] : nullptr));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("character " + std::to_string(i) + ": " + e.what());
     }
@@ -31,8 +45,8 @@ Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
   batched_ = controllers.controllers.size() == static_cast<std::size_t>(kSlotCount);
   for (const Controller& c : controllers.controllers)
     batched_ = batched_ && c.packed() != nullptr;
-  for (const WalkerOptions& o : characters)
-    batched_ = batched_ && !o.controller_backend;
+  for (const Walker& w : walkers_)
+    batched_ = batched_ && w.backend_ == nullptr;
   if (batched_) {
     metrics_.resize(2 * kMetricCount * kLanesPerSlot);
     output_.resize(kLanesPerSlot * static_cast<std::size_t>(kSlotCount));
@@ -50,29 +64,36 @@ Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
   cosines_.resize(angles_.size());
 }
 
-void Crowd::advance(double dt) {
-  const Walker::SubSteps s = Walker::sub_steps(dt, time_step_);
+bool Crowd::advance(double dt) noexcept {
+  if (!(dt >= 0.0 && dt <= Walker::kLongestAdvance)) return false;
+  const detail::SubSteps s = detail::sub_steps(dt, time_step_);
   for (std::size_t first = 0; first < walkers_.size(); first += kBlock) {
     const std::size_t count = std::min(kBlock, walkers_.size() - first);
     for (int i = 0; i < s.count; ++i)
       step(first, count, s.length);
   }
+  return true;
 }
 
-void Crowd::clear_events() {
+double Crowd::set_step_length(std::size_t i, double metres) noexcept {
+  if (i >= walkers_.size()) return std::numeric_limits<double>::quiet_NaN();
+  return walkers_[i].set_step_length(metres);
+}
+
+void Crowd::clear_events() noexcept {
   for (Walker& w : walkers_)
     w.clear_events();
 }
 
 void Crowd::step(std::size_t first, std::size_t count, double h) {
   for (std::size_t i = 0; i < count; ++i)
-    walkers_[first + i].measure(steps_[i]);
+    WalkerStages::measure(walkers_[first + i], steps_[i]);
   command(first, count);
   for (std::size_t i = 0; i < count; ++i)
-    walkers_[first + i].integrate(h, steps_[i]);
+    WalkerStages::integrate(walkers_[first + i], h, steps_[i]);
   place_legs(first, count);
   for (std::size_t i = 0; i < count; ++i)
-    walkers_[first + i].finish_step(h, steps_[i]);
+    WalkerStages::finish_step(walkers_[first + i], h, steps_[i]);
 }
 
 // Each controller for every leg of the block it drives this step at once: each leg's metrics laid
@@ -81,14 +102,14 @@ void Crowd::step(std::size_t first, std::size_t count, double h) {
 void Crowd::command(std::size_t first, std::size_t count) {
   if (!batched_) {
     for (std::size_t i = 0; i < count; ++i)
-      walkers_[first + i].command(steps_[i].metrics, steps_[i].commands);
+      WalkerStages::command(walkers_[first + i], steps_[i]);
     return;
   }
   // A leg's four controllers are those of its phase, so it takes the same lane in each.
   std::size_t legs_in[2] = {};  // [swing, stance]
   constexpr std::size_t kMetrics = kMetricCount;
   for (std::size_t i = 0; i < count; ++i) {
-    Walker::StepData& d = steps_[i];
+    StepData& d = steps_[i];
     const WalkerState& state = walkers_[first + i].state_;
     for (std::size_t leg = 0; leg < 2; ++leg) {
       const std::size_t phase = state.legs[leg].phase == Phase::Swing ? 0 : 1;
@@ -127,15 +148,15 @@ void Crowd::command(std::size_t first, std::size_t count) {
 void Crowd::place_legs(std::size_t first, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t leg = 0; leg < 2; ++leg) {
-      Walker::TrigCache& cache = walkers_[first + i].trig_[leg];
-      cache.orientation = walkers_[first + i].orientation(static_cast<int>(leg));
-      rig::detail::to_lanes(cache.orientation, &angles_[8 * i + 4 * leg]);
+      Walker& w = walkers_[first + i];
+      w.trig_orientation_[leg] = rig::orientation(w.state_.pelvis_tilt, w.state_.legs[leg].angles);
+      rig::detail::to_lanes(w.trig_orientation_[leg], &angles_[8 * i + 4 * leg]);
     }
   }
   rig::detail::sin_cos(angles_.data(), sines_.data(), cosines_.data(), 8 * count);
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t leg = 0; leg < 2; ++leg) {
-      walkers_[first + i].trig_[leg].trig =
+      walkers_[first + i].trig_[leg] =
           rig::detail::from_lanes(&sines_[8 * i + 4 * leg], &cosines_[8 * i + 4 * leg]);
     }
   }

@@ -10,14 +10,20 @@
 #include <stdexcept>
 #include <string>
 
+#include "fuzzygait/compiler.hpp"
 #include "fuzzygait/fuzzy/term.hpp"
 #include "runtime/common/format.hpp"
 #include "runtime/common/splitmix64.hpp"
+#include "runtime/gait/walker_stages.hpp"
 #include "runtime/rig/trigonometry.hpp"
 
 namespace fuzzygait::gait {
 namespace {
 
+using detail::ControllerBackend;
+using detail::StepData;
+using detail::SubSteps;
+using detail::WalkerStages;
 using fuzzygait::common::number_text;
 using rig::LegAngles;
 using rig::LegPoints;
@@ -28,7 +34,6 @@ using rig::detail::arctan2;
 using rig::detail::sin_cos;
 
 constexpr double kGravity = 9.81;
-constexpr std::size_t kEventCapacity = 64;
 // A swing foot lands once its leg's delta reaches this (the leg arrives in front of the body).
 constexpr double kLandingDelta = 0.8;
 // Mid-swing, the clearance reflex keeps a swinging foot this far above the ground (m); lifting it
@@ -42,10 +47,9 @@ constexpr rig::LegAngles kMaxJointSpeed{20.0, 20.0, 20.0, 40.0};
 constexpr double kLongestSwing = 1.0;
 // Fastest the clearance reflex folds the knee, rad/s.
 constexpr double kReflexSpeed = 10.0;
-// Longest dt one advance() takes, s: an hour of walking, longer than any frame, so that a
-// nonsense dt (a timer gone wrong) is an error rather than a program frozen for days or a count
-// of sub-steps overflowing. With the shortest time step it is 3.6e8 sub-steps, within an int.
-constexpr double kLongestAdvance = 3600.0;
+// Walker::kLongestAdvance, an hour, is longer than any frame, so that a nonsense dt (a timer gone
+// wrong) is refused rather than a program frozen for days or a count of sub-steps overflowing:
+// with the shortest time step it is 3.6e8 sub-steps, within an int.
 // Longest step, in leg lengths: as far as these legs reach. (The shortest is the controller
 // set's: ControllerSet::shortest_step.)
 constexpr double kLongestStep = 1.2;
@@ -185,13 +189,17 @@ double Walker::max_step_length(const rig::Segments& s) {
 
 Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
                const terrain::Terrain& terrain)
+    : Walker(controllers, options, terrain, nullptr) {}
+
+Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
+               const terrain::Terrain& terrain, const ControllerBackend* backend)
     : controllers_(&controllers),
       terrain_(&terrain),
+      backend_(backend),
       segments_(options.segments),
       limits_(options.limits),
       step_length_(options.step_length),
-      time_step_(options.time_step),
-      controller_backend_(options.controller_backend) {
+      time_step_(options.time_step) {
   rig::validate(segments_);
   rig::validate(limits_);
   if (controllers.controllers.size() != static_cast<std::size_t>(kSlotCount)) {
@@ -201,7 +209,14 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
     throw std::invalid_argument("time step must be between 0.00001 and 0.05 s, got " +
                                 number_text(time_step_));
   }
-  set_step_length(options.step_length);
+  if (!(options.step_length >= min_step_length() && options.step_length <= max_step_length())) {
+    throw std::invalid_argument(
+        "step length must be between " + number_text(min_step_length(), 3) + " m (" +
+        number_text(controllers_->shortest_step) + " leg lengths, the shortest '" +
+        controllers_->name + "' walks) and " + number_text(max_step_length(), 3) + " m (" +
+        number_text(kLongestStep) + " leg lengths, the reach of these legs), got " +
+        number_text(options.step_length) + " m");
+  }
   workspaces_.reserve(static_cast<std::size_t>(kSlotCount));
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
     workspaces_.push_back(controllers.controllers[s].make_workspace());
@@ -213,25 +228,20 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
   start(options.start);
 }
 
-void Walker::set_step_length(double metres) {
-  const double shortest = min_step_length(*controllers_, segments_);
-  const double longest = max_step_length(segments_);
-  if (!(metres >= shortest && metres <= longest)) {
-    auto fixed = [](double value, int decimals) {
-      char text[400];  // room for any double in full
-      std::snprintf(text, sizeof text, "%.*f", decimals, value);
-      return std::string(text);
-    };
-    throw std::invalid_argument(
-        "step length must be between " + fixed(shortest, 3) + " m (" +
-        fixed(controllers_->shortest_step, 2) + " leg lengths, the shortest '" +
-        controllers_->name + "' walks) and " + fixed(longest, 3) + " m (" + fixed(kLongestStep, 1) +
-        " leg lengths, the reach of these legs), got " + fixed(metres, 3) + " m");
-  }
-  step_length_ = metres;
+double Walker::min_step_length() const noexcept {
+  return controllers_->shortest_step * segments_.leg_length();
 }
 
-rig::Pose Walker::pose() const {
+double Walker::max_step_length() const noexcept {
+  return kLongestStep * segments_.leg_length();
+}
+
+double Walker::set_step_length(double metres) noexcept {
+  if (!std::isnan(metres)) step_length_ = std::clamp(metres, min_step_length(), max_step_length());
+  return step_length_;
+}
+
+rig::Pose Walker::pose() const noexcept {
   rig::Pose p;
   p.pelvis = state_.pelvis;
   p.pelvis_tilt = state_.pelvis_tilt;
@@ -239,7 +249,7 @@ rig::Pose Walker::pose() const {
   return p;
 }
 
-LegPoints Walker::points(rig::Side side) const {
+LegPoints Walker::points(rig::Side side) const noexcept {
   return rig::forward_kinematics(segments_, state_.pelvis, state_.pelvis_tilt,
                                  state_.legs[rig::index(side)].angles);
 }
@@ -248,38 +258,38 @@ namespace {
 bool same_bits(double a, double b) {
   return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
-}  // namespace
 
-// rig::forward_kinematics with the walker's tilt: the same points, with the segments' sines and
-// cosines computed only when an orientation changed (bit for bit) since the leg was last placed.
-// Inline, so that a caller computes only the points it reads.
-inline LegPoints Walker::leg_points(int leg, Point hip, const LegAngles& angles) {
-  const rig::LegOrientation o = rig::orientation(state_.pelvis_tilt, angles);
-  TrigCache& t = trig_[static_cast<std::size_t>(leg)];
-  // The test inline: in a crowd, which fills the caches for a step in one batch, most calls pass
-  // (1 % of a crowd's instructions; no change alone).
-  if (!(same_bits(o.thigh, t.orientation.thigh) && same_bits(o.shank, t.orientation.shank) &&
-        same_bits(o.foot, t.orientation.foot) && same_bits(o.toes, t.orientation.toes))) {
-    t.update(o);
-  }
-  return rig::forward_kinematics(segments_, hip, t.trig);
-}
-
-void Walker::TrigCache::update(const rig::LegOrientation& o) {
-  if (same_bits(o.thigh, orientation.thigh) && same_bits(o.shank, orientation.shank) &&
-      same_bits(o.foot, orientation.foot)) {
-    if (same_bits(o.toes, orientation.toes)) return;
-    // Only the toes turned (the ground bent them up, about every other step): theirs alone, the
-    // bits their lane of the four would get.
-    orientation.toes = o.toes;
+// The cached sines and cosines brought to orientation o: all four when the thigh, shank or foot
+// turned; only the toes' when they alone did (the ground bent them up, about every other step),
+// the bits their lane of the four would get.
+void update_trig(rig::LegOrientation& cached, rig::LegTrig& trig, const rig::LegOrientation& o) {
+  if (same_bits(o.thigh, cached.thigh) && same_bits(o.shank, cached.shank) &&
+      same_bits(o.foot, cached.foot)) {
+    if (same_bits(o.toes, cached.toes)) return;
+    cached.toes = o.toes;
     const rig::detail::SinCos toes = sin_cos(o.toes);
     trig.toes_sin = toes.sin;
     trig.toes_cos = toes.cos;
     return;
   }
-  // All four at once (one vectorised kernel); an unchanged segment gets the same bits again.
-  orientation = o;
+  cached = o;
   trig = rig::detail::leg_trig(o);
+}
+}  // namespace
+
+// rig::forward_kinematics with the walker's tilt: the same points, with the segments' sines and
+// cosines computed only when an orientation changed (bit for bit) since the leg was last placed.
+// Inline, so that a caller computes only the points it reads.
+inline LegPoints WalkerStages::leg_points(Walker& w, int leg, Point hip, const LegAngles& angles) {
+  const rig::LegOrientation o = rig::orientation(w.state_.pelvis_tilt, angles);
+  const auto k = static_cast<std::size_t>(leg);
+  rig::LegOrientation& cached = w.trig_orientation_[k];
+  // The test inline: in a crowd, which fills the caches for a step in one batch, most calls pass.
+  if (!(same_bits(o.thigh, cached.thigh) && same_bits(o.shank, cached.shank) &&
+        same_bits(o.foot, cached.foot) && same_bits(o.toes, cached.toes))) {
+    update_trig(cached, w.trig_[k], o);
+  }
+  return rig::forward_kinematics(w.segments_, hip, w.trig_[k]);
 }
 
 void Walker::record(rig::Side side, Event event, Point where) {
@@ -405,7 +415,7 @@ void Walker::warm_up(double seconds) {
       terrain::Terrain::polyline({{-1e6, ground->height(0.0)}, {1e6, ground->height(0.0)}});
   terrain_ = &level;
   for (double t = 0.0; t < seconds; t += time_step_)
-    step(time_step_);
+    WalkerStages::step(*this, time_step_);
   terrain_ = ground;
   const double shift = state_.pelvis.x;
   state_.pelvis.x = 0.0;
@@ -448,7 +458,7 @@ void Walker::hand_over(int leg) {
 
 void Walker::lift_off(int leg) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-  const LegPoints p = leg_points(leg, state_.pelvis, l.angles);
+  const LegPoints p = WalkerStages::leg_points(*this, leg, state_.pelvis, l.angles);
   if (l.phase != Phase::Swing) record(static_cast<rig::Side>(leg), Event::ToeOff, p.tip);
   l.phase = Phase::Swing;
   l.swing_start = state_.time;
@@ -460,17 +470,18 @@ void Walker::lift_off(int leg) {
 }
 
 void Walker::place_pelvis(int leg) {
-  place_pelvis(leg, hip_at_origin(leg));
+  WalkerStages::place_pelvis(*this, leg, WalkerStages::hip_at_origin(*this, leg));
 }
 
-[[gnu::always_inline]] inline void Walker::place_pelvis(int leg, const LegPoints& at_origin) {
-  const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+FUZZYGAIT_ALWAYS_INLINE void WalkerStages::place_pelvis(Walker& w, int leg,
+                                                        const LegPoints& at_origin) {
+  const LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
   const Point c = contact_point(at_origin, l.phase);
-  state_.pelvis = {l.anchor.x - c.x, l.anchor.y - c.y};
+  w.state_.pelvis = {l.anchor.x - c.x, l.anchor.y - c.y};
 }
 
-[[gnu::always_inline]] inline LegPoints Walker::hip_at_origin(int leg) {
-  return leg_points(leg, {0.0, 0.0}, state_.legs[static_cast<std::size_t>(leg)].angles);
+FUZZYGAIT_ALWAYS_INLINE LegPoints WalkerStages::hip_at_origin(Walker& w, int leg) {
+  return leg_points(w, leg, {0.0, 0.0}, w.state_.legs[static_cast<std::size_t>(leg)].angles);
 }
 
 // Two-link IK of the newly planted leg (the one not carrying the pelvis): hip and knee put its
@@ -578,11 +589,12 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
 
 // Height of the carrying leg's knee above the ground, its foot on its anchor, from the leg's points
 // with its hip at the origin.
-[[gnu::always_inline]] inline double Walker::knee_gap(int leg, const LegPoints& p) const {
-  const LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+FUZZYGAIT_ALWAYS_INLINE double WalkerStages::knee_gap(const Walker& w, int leg,
+                                                      const LegPoints& p) {
+  const LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
   const Point c = contact_point(p, l.phase);
   const Point knee{l.anchor.x + (p.knee.x - c.x), l.anchor.y + (p.knee.y - c.y)};
-  return knee.y - terrain_->height(knee.x);
+  return knee.y - w.terrain_->height(knee.x);
 }
 
 // A carrying leg whose knee is below the ground folds no further (only after an awkward start):
@@ -596,7 +608,7 @@ void Walker::keep_knee_up(int leg, double known_good) {
   auto gap = [&](double knee) {
     l.angles.knee = knee;
     if (l.phase == Phase::Flat) l.angles.ankle = slope - shank_of(state_.pelvis_tilt, l.angles);
-    return knee_gap(leg, hip_at_origin(leg));
+    return WalkerStages::knee_gap(*this, leg, WalkerStages::hip_at_origin(*this, leg));
   };
   const double bad = l.angles.knee;
   double good = known_good;
@@ -619,7 +631,7 @@ void Walker::clear_ground(int leg, double max_change, double margin, bool with_t
   auto knee_depth = [&](double hip) {
     rig::LegAngles a = l.angles;
     a.hip = hip;
-    const LegPoints p = leg_points(leg, state_.pelvis, a);
+    const LegPoints p = WalkerStages::leg_points(*this, leg, state_.pelvis, a);
     return terrain_->height(p.knee.x) - p.knee.y + kSwingClearance;
   };
   if (knee_depth(l.angles.hip) > 0.0) {
@@ -633,7 +645,7 @@ void Walker::clear_ground(int leg, double max_change, double margin, bool with_t
   auto depth = [&](double knee) {
     rig::LegAngles a = l.angles;
     a.knee = knee;
-    const LegPoints p = leg_points(leg, state_.pelvis, a);
+    const LegPoints p = WalkerStages::leg_points(*this, leg, state_.pelvis, a);
     return foot_depth(p, ground_under(*terrain_, p), with_tip) + margin;
   };
   if (depth(high) > 0.0) {  // cannot clear in one step: fold as far as allowed
@@ -643,16 +655,16 @@ void Walker::clear_ground(int leg, double max_change, double margin, bool with_t
   l.angles.knee = bisect(high, l.angles.knee, [&](double knee) { return !(depth(knee) > 0.0); });
 }
 
-[[gnu::always_inline]] inline void Walker::update_metrics(int leg, const LegPoints& p,
+FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, const LegPoints& p,
                                                           MetricValues& m) {
-  LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-  const double tilt = state_.pelvis_tilt;
+  LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
+  const double tilt = w.state_.pelvis_tilt;
   const double thigh = thigh_of(tilt, l.angles);
   double end = l.sweep_end;
   if (l.phase == Phase::Swing) {
     // Arrived when the thigh is where a straight leg's heel would point at the foot target.
-    const Point target{l.target_x, terrain_->height(l.target_x)};
-    end = inclination(p.hip, target) + heel_offset_;
+    const Point target{l.target_x, w.terrain_->height(l.target_x)};
+    end = inclination(p.hip, target) + w.heel_offset_;
     l.sweep_end = end;
   }
   l.delta = progress(thigh, l.sweep_start, end);
@@ -662,62 +674,74 @@ void Walker::clear_ground(int leg, double max_change, double margin, bool with_t
   m[static_cast<std::size_t>(Metric::Ankle)] = rig::degrees(l.angles.ankle);
   m[static_cast<std::size_t>(Metric::Toe)] = rig::degrees(l.angles.toe);
   m[static_cast<std::size_t>(Metric::Sole)] =
-      rig::degrees(foot_of(tilt, l.angles) - terrain_->slope(p.ankle.x));
+      rig::degrees(foot_of(tilt, l.angles) - w.terrain_->slope(p.ankle.x));
 }
 
 // All eight controllers before any joint moves: they read only the metrics, and side by side
 // (rather than between the two legs' integrations) they took 3 % less of a step.
-void Walker::command(const std::array<MetricValues, 2>& metrics,
-                     std::array<std::array<double, 4>, 2>& commands) {
-  const bool backend = static_cast<bool>(controller_backend_);
-#pragma GCC unroll 2
+void WalkerStages::command(Walker& w, StepData& d) {
+  const ControllerBackend* backend = w.backend_;
+  FUZZYGAIT_UNROLL(2)
   for (std::size_t leg = 0; leg < 2; ++leg) {
     const LegPhase phase =
-        state_.legs[leg].phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
-    const MetricValues& m = metrics[leg];
-#pragma GCC unroll 4
+        w.state_.legs[leg].phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
+    const MetricValues& m = d.metrics[leg];
+    FUZZYGAIT_UNROLL(4)
     for (std::size_t joint = 0; joint < 4; ++joint) {
       const auto s = static_cast<std::size_t>(slot(phase, static_cast<Joint>(joint)));
-      commands[leg][joint] = backend ? controller_backend_(static_cast<int>(s), m)
-                                     : controllers_->controllers[s].evaluate(m, workspaces_[s]);
+      d.commands[leg][joint] = backend
+                                   ? backend->evaluate(static_cast<int>(s), m)
+                                   : w.controllers_->controllers[s].evaluate(m, w.workspaces_[s]);
     }
   }
 }
 
-Walker::SubSteps Walker::sub_steps(double dt, double time_step) {
-  if (!(dt >= 0.0 && dt <= kLongestAdvance)) {
-    throw std::invalid_argument("advance: dt must be between 0 and 3600 s, got " + number_text(dt));
-  }
+Walker WalkerStages::make_walker(const ControllerSet& controllers, const WalkerOptions& options,
+                                 const terrain::Terrain& terrain,
+                                 const ControllerBackend* backend) {
+  return Walker(controllers, options, terrain, backend);
+}
+
+Crowd WalkerStages::make_crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
+                               std::span<const WalkerOptions> characters,
+                               std::span<const ControllerBackend* const> backends) {
+  return Crowd(controllers, terrain, characters, backends);
+}
+
+SubSteps detail::sub_steps(double dt, double time_step) noexcept {
+  if (!(dt >= 0.0 && dt <= Walker::kLongestAdvance)) return {};
   const double steps = std::ceil(dt / time_step - 1e-9);
   const int n = std::max(1, static_cast<int>(steps));
   const double h = dt / n;
   return {h > 0.0 ? n : 0, h};
 }
 
-void Walker::advance(double dt) {
-  const SubSteps s = sub_steps(dt, time_step_);
+bool Walker::advance(double dt) noexcept {
+  if (!(dt >= 0.0 && dt <= kLongestAdvance)) return false;
+  const SubSteps s = detail::sub_steps(dt, time_step_);
   for (int i = 0; i < s.count; ++i)
-    step(s.length);
+    WalkerStages::step(*this, s.length);
+  return true;
 }
 
-void Walker::step(double h) {
+void WalkerStages::step(Walker& w, double h) {
   StepData d;
-  measure(d);
-  command(d.metrics, d.commands);
-  integrate(h, d);
-  finish_step(h, d);
+  measure(w, d);
+  command(w, d);
+  integrate(w, h, d);
+  finish_step(w, h, d);
 }
 
-void Walker::measure(StepData& d) {
-  if (!end_points_valid_) {
+void WalkerStages::measure(Walker& w, StepData& d) {
+  if (!w.end_points_valid_) {
     for (int leg = 0; leg < 2; ++leg) {
-      end_points_[static_cast<std::size_t>(leg)] =
-          leg_points(leg, state_.pelvis, state_.legs[static_cast<std::size_t>(leg)].angles);
+      w.end_points_[static_cast<std::size_t>(leg)] =
+          leg_points(w, leg, w.state_.pelvis, w.state_.legs[static_cast<std::size_t>(leg)].angles);
     }
   }
   std::array<MetricValues, 2>& metrics = d.metrics;
   for (int leg = 0; leg < 2; ++leg) {
-    update_metrics(leg, end_points_[static_cast<std::size_t>(leg)],
+    update_metrics(w, leg, w.end_points_[static_cast<std::size_t>(leg)],
                    metrics[static_cast<std::size_t>(leg)]);
   }
   const auto other_delta = static_cast<std::size_t>(Metric::OtherDelta);
@@ -726,23 +750,23 @@ void Walker::measure(StepData& d) {
   metrics[1][other_delta] = metrics[0][delta];
 }
 
-void Walker::integrate(double h, StepData& d) {
+void WalkerStages::integrate(Walker& w, double h, StepData& d) {
   // advance() splits a frame into equal sub-steps, so h changes only with the frame's length:
   // exp() is recomputed only when h changes.
-  if (!(h == follow_step_)) {
-    follow_step_ = h;
-    follow_ = 1.0 - std::exp(-h / controllers_->inertia);
+  if (!(h == w.follow_step_)) {
+    w.follow_step_ = h;
+    w.follow_ = 1.0 - std::exp(-h / w.controllers_->inertia);
   }
-  const double follow = follow_;
-  const Joints minimum = joints(limits_.minimum);
-  const Joints maximum = joints(limits_.maximum);
+  const double follow = w.follow_;
+  const Joints minimum = joints(w.limits_.minimum);
+  const Joints maximum = joints(w.limits_.maximum);
   constexpr double per_degree = rig::radians(1.0);
   for (int leg = 0; leg < 2; ++leg) {
-    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
     d.previous[static_cast<std::size_t>(leg)] = l.angles;
     const std::array<double, 4>& c = d.commands[static_cast<std::size_t>(leg)];
     // A longer swing of the thigh swings the shank faster in proportion (see ControllerSet).
-    const double reference = controllers_->swing_knee_reference_sweep;
+    const double reference = w.controllers_->swing_knee_reference_sweep;
     const double knee_scale = l.phase == Phase::Swing && reference > 0.0
                                   ? std::abs(l.sweep_end - l.sweep_start) / reference
                                   : 1.0;
@@ -769,116 +793,116 @@ void Walker::integrate(double h, StepData& d) {
   }
   // The carrying foot's rules: with them every joint angle is set for the chain that follows
   // (finish_step() places the legs from here).
-  if (state_.lead >= 0) {
-    settle_foot(state_.lead, d.commanded[static_cast<std::size_t>(state_.lead)]);
+  if (w.state_.lead >= 0) {
+    w.settle_foot(w.state_.lead, d.commanded[static_cast<std::size_t>(w.state_.lead)]);
   }
 }
 
-void Walker::finish_step(double h, StepData& d) {
-  const double tilt = state_.pelvis_tilt;
+void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
+  const double tilt = w.state_.pelvis_tilt;
   const std::array<LegAngles, 2>& previous = d.previous;
   const std::array<LegAngles, 2>& commanded = d.commanded;
-  if (state_.lead < 0) {
+  if (w.state_.lead < 0) {
     // Airborne (only after an awkward start): fall until a foot touches.
-    state_.fall_velocity += kGravity * h;
-    state_.pelvis.y -= state_.fall_velocity * h;
+    w.state_.fall_velocity += kGravity * h;
+    w.state_.pelvis.y -= w.state_.fall_velocity * h;
   } else {
     // The leg planted first carries the pelvis, through double support too: the chain grows
     // from its foot, so a planted foot never slides and the body's motion stays continuous.
-    const int lead = state_.lead;
-    LegPoints at_origin = hip_at_origin(lead);
-    if (knee_gap(lead, at_origin) < 0.0) {
-      keep_knee_up(lead, previous[static_cast<std::size_t>(lead)].knee);
-      at_origin = hip_at_origin(lead);
+    const int lead = w.state_.lead;
+    LegPoints at_origin = hip_at_origin(w, lead);
+    if (knee_gap(w, lead, at_origin) < 0.0) {
+      w.keep_knee_up(lead, previous[static_cast<std::size_t>(lead)].knee);
+      at_origin = hip_at_origin(w, lead);
     }
-    place_pelvis(lead, at_origin);
+    place_pelvis(w, lead, at_origin);
   }
   // A swinging leg placed below with the pelvis carried by the other leg: its points stand (its
   // heel and ball above the ground), and this is the ground's height under its toe tip.
   std::array<std::optional<double>, 2> placed_tip_ground;
   for (int leg = 0; leg < 2; ++leg) {
-    if (leg == state_.lead) continue;
-    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    if (leg == w.state_.lead) continue;
+    LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
     if (l.phase == Phase::Swing) {
       // Swing foot: it lands once the leg arrives in front of the body; before that the knee
       // folds just enough to keep the foot off the ground (a clearance reflex), and only a foot
       // the reflex cannot lift touches down early.
-      LegPoints p = leg_points(leg, state_.pelvis, l.angles);
+      LegPoints p = leg_points(w, leg, w.state_.pelvis, l.angles);
       // A swing that drags on (a leg stuck in a deep crouch after an awkward start) gives up
       // and puts the foot down where it is.
-      const bool arriving = l.delta >= kLandingDelta || state_.lead < 0 ||
-                            state_.time - l.swing_start > kLongestSwing;
-      const double knee_clearance = p.knee.y - terrain_->height(p.knee.x);
+      const bool arriving = l.delta >= kLandingDelta || w.state_.lead < 0 ||
+                            w.state_.time - l.swing_start > kLongestSwing;
+      const double knee_clearance = p.knee.y - w.terrain_->height(p.knee.x);
       // The clearance wanted grows from nothing at toe off and fades again before landing, so
       // the reflex never jerks the knee when the foot leaves or reaches the ground.
       const double margin = kSwingClearance * std::clamp((l.delta + 1.0) / 0.5, 0.0, 1.0) *
                             std::clamp((kLandingDelta - l.delta) / 0.3, 0.0, 1.0);
-      FootGround ground = ground_under(*terrain_, p);
+      FootGround ground = ground_under(*w.terrain_, p);
       if ((!arriving && foot_depth(p, ground) > -margin) || knee_clearance < kSwingClearance) {
-        clear_ground(leg, kReflexSpeed * h, margin);
-        p = leg_points(leg, state_.pelvis, l.angles);
-        ground = ground_under(*terrain_, p);
+        w.clear_ground(leg, kReflexSpeed * h, margin);
+        p = leg_points(w, leg, w.state_.pelvis, l.angles);
+        ground = ground_under(*w.terrain_, p);
       }
       const double heel_depth = ground.heel - p.heel.y;
       const double ball_depth = ground.ball - p.ball.y;
       if (heel_depth < 0.0 && ball_depth < 0.0) {
-        if (state_.lead >= 0) {
+        if (w.state_.lead >= 0) {
           placed_tip_ground[static_cast<std::size_t>(leg)] = ground.tip;
-          end_points_[static_cast<std::size_t>(leg)] = p;
+          w.end_points_[static_cast<std::size_t>(leg)] = p;
         }
         continue;
       }
       if (heel_depth >= ball_depth) {
-        strike(leg, Phase::Heel, {p.heel.x, ground.heel});
+        w.strike(leg, Phase::Heel, {p.heel.x, ground.heel});
       } else {
-        strike(leg, Phase::Ball, {p.ball.x, ground.ball});
+        w.strike(leg, Phase::Ball, {p.ball.x, ground.ball});
       }
-      if (state_.lead == leg) {
-        settle_foot(leg, l.angles);
-        place_pelvis(leg);
+      if (w.state_.lead == leg) {
+        w.settle_foot(leg, l.angles);
+        w.place_pelvis(leg);
         continue;
       }
     }
     // The newly planted foot: hip and knee close the chain onto it (IK) while its ankle
     // follows its controller; once it is flat, the carrying leg lifts off and hands over.
-    if (!close_chain(leg)) {
-      hand_over(state_.lead);
+    if (!w.close_chain(leg)) {
+      w.hand_over(w.state_.lead);
       break;
     }
     const Phase closed_in = l.phase;
-    settle_foot(leg, commanded[static_cast<std::size_t>(leg)]);
+    w.settle_foot(leg, commanded[static_cast<std::size_t>(leg)]);
     // On the heel or the ball with no change of phase, the foot's rules changed nothing the
     // chain depends on (a ball's toes rest as the chain left them): it is still closed.
-    bool reached = (l.phase == closed_in && l.phase != Phase::Flat) || close_chain(leg);
+    bool reached = (l.phase == closed_in && l.phase != Phase::Flat) || w.close_chain(leg);
     if (reached && l.phase == Phase::Ball &&
-        foot_of(tilt, l.angles) >= terrain_->slope(l.anchor.x)) {
+        foot_of(tilt, l.angles) >= w.terrain_->slope(l.anchor.x)) {
       // The chain closed with the heel back on the ground.
-      settle_foot(leg, l.angles);
-      reached = close_chain(leg);
+      w.settle_foot(leg, l.angles);
+      reached = w.close_chain(leg);
     }
-    if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball) hand_over(state_.lead);
+    if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball) w.hand_over(w.state_.lead);
     break;
   }
   for (int leg = 0; leg < 2; ++leg) {
-    LegState& l = state_.legs[static_cast<std::size_t>(leg)];
+    LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
     const std::optional<double> tip_ground = placed_tip_ground[static_cast<std::size_t>(leg)];
     const bool stands = tip_ground.has_value();
     // Placed where the next step starts from (a standing swing foot is there already).
-    LegPoints& p = end_points_[static_cast<std::size_t>(leg)];
-    if (!stands) p = leg_points(leg, state_.pelvis, l.angles);
+    LegPoints& p = w.end_points_[static_cast<std::size_t>(leg)];
+    if (!stands) p = leg_points(w, leg, w.state_.pelvis, l.angles);
     // A foot that has just lifted off can sit a hair below the ground once the other foot takes
     // the pelvis: lift it at once. (Its toe tip is left to the toes, which bend up below.)
-    if (!stands && l.phase == Phase::Swing && state_.lead >= 0 &&
-        foot_depth(p, ground_under(*terrain_, p), false) > 0.0) {
-      clear_ground(leg, limits_.maximum.knee, 0.0, false);
-      p = leg_points(leg, state_.pelvis, l.angles);
+    if (!stands && l.phase == Phase::Swing && w.state_.lead >= 0 &&
+        foot_depth(p, ground_under(*w.terrain_, p), false) > 0.0) {
+      w.clear_ground(leg, w.limits_.maximum.knee, 0.0, false);
+      p = leg_points(w, leg, w.state_.pelvis, l.angles);
     }
     // Toes never dip below the ground: they bend up where the ground holds them.
-    const double ground = stands ? *tip_ground : terrain_->height(p.tip.x);
+    const double ground = stands ? *tip_ground : w.terrain_->height(p.tip.x);
     if (p.tip.y < ground) {
-      const double rise = std::clamp((ground - p.ball.y) / segments_.toe, -1.0, 1.0);
+      const double rise = std::clamp((ground - p.ball.y) / w.segments_.toe, -1.0, 1.0);
       l.angles.toe = std::max(l.angles.toe, arcsin(rise) - foot_of(tilt, l.angles));
-      p = leg_points(leg, state_.pelvis, l.angles);
+      p = leg_points(w, leg, w.state_.pelvis, l.angles);
     }
     // What a joint remembers as its speed is capped: a jump made in one step (the chain closing
     // onto a foot put down far from the body after an awkward start) must not carry on as a
@@ -892,8 +916,8 @@ void Walker::finish_step(double h, StepData& d) {
     store(l.velocity, {speed(now.hip_knee, before.hip_knee, fastest.hip_knee),
                        speed(now.ankle_toe, before.ankle_toe, fastest.ankle_toe)});
   }
-  end_points_valid_ = true;
-  state_.time += h;
+  w.end_points_valid_ = true;
+  w.state_.time += h;
 }
 
 }  // namespace fuzzygait::gait

@@ -1,0 +1,67 @@
+// The walker's time step in stages, which Crowd runs for a block of characters at a time, and the
+// controller back end that tests and fuzzygait-bench compare the controllers with. Internal to
+// fuzzygait (not installed).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <span>
+
+#include "fuzzygait/gait/crowd.hpp"
+#include "fuzzygait/gait/walker.hpp"
+
+namespace fuzzygait::gait::detail {
+
+// Another evaluator of a set's controllers, called instead of its engines, eight times a time
+// step: given a slot (see slot()) and the leg's metrics, it returns what that controller would. It
+// should not allocate. The caller keeps it alive while walkers use it.
+struct ControllerBackend {
+  std::function<double(int slot, const MetricValues& metrics)> evaluate;
+};
+
+// What a time step hands from stage to stage.
+struct StepData {
+  std::array<MetricValues, 2> metrics;
+  std::array<std::array<double, 4>, 2> commands;  // [leg][joint]: the controllers' outputs
+  std::array<rig::LegAngles, 2> previous;         // joint angles before the step
+  std::array<rig::LegAngles, 2> commanded;        // and as the controllers turned them
+};
+
+// advance(dt)'s equal sub-steps, none longer than the time step (none for a refused dt).
+struct SubSteps {
+  int count = 0;
+  double length = 0.0;
+};
+SubSteps sub_steps(double dt, double time_step) noexcept;
+
+struct WalkerStages {
+  // One time step: measure() the metrics, command() the controllers, integrate() the joint
+  // velocities (and the carrying foot's rules), finish_step() the chain and the contacts.
+  static void step(Walker& w, double h);
+  static void measure(Walker& w, StepData& d);
+  static void command(Walker& w, StepData& d);
+  static void integrate(Walker& w, double h, StepData& d);
+  static void finish_step(Walker& w, double h, StepData& d);
+
+  // The stages' inline helpers (walker.cpp, the only file that calls them).
+  // rig::forward_kinematics of a leg with its cached sines and cosines.
+  static rig::LegPoints leg_points(Walker& w, int leg, rig::Point hip,
+                                   const rig::LegAngles& angles);
+  // The leg's points with its hip at the origin.
+  static rig::LegPoints hip_at_origin(Walker& w, int leg);
+  // The pelvis put where the leg's contact point meets its anchor.
+  static void place_pelvis(Walker& w, int leg, const rig::LegPoints& at_origin);
+  // Height of a carrying leg's knee above the ground, from its points with the hip at the origin.
+  static double knee_gap(const Walker& w, int leg, const rig::LegPoints& at_origin);
+  static void update_metrics(Walker& w, int leg, const rig::LegPoints& points, MetricValues& m);
+
+  // A walker, or a crowd, whose controllers `backend` evaluates (one per character, null for
+  // the set's own engines).
+  static Walker make_walker(const ControllerSet& controllers, const WalkerOptions& options,
+                            const terrain::Terrain& terrain, const ControllerBackend* backend);
+  static Crowd make_crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
+                          std::span<const WalkerOptions> characters,
+                          std::span<const ControllerBackend* const> backends);
+};
+
+}  // namespace fuzzygait::gait::detail
