@@ -1,4 +1,4 @@
-// `fuzzygait eval`: the realism and contact figures of a walk CSV (DESIGN.md, "How we measure"),
+// `fuzzygait eval`: the realism and contact figures of a walk CSV (docs/measuring.md),
 // as a table and as JSON.
 #include <filesystem>
 #include <fstream>

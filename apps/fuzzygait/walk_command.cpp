@@ -60,8 +60,9 @@ gait::StartPose parse_start(const std::string& text) {
                               "'");
 }
 
-// The default set meets the contact bounds over its step range (README, "Step lengths"); a style
-// or a set of one's own may not, and the files are written all the same, so the reader is told.
+// The default set meets the contact bounds over its step range (docs/walk.md, "Step lengths");
+// a style or a set of one's own may not, and the files are written all the same, so the reader
+// is told.
 void warn_about_contact(const eval::GaitReport& report) {
   const std::vector<std::string> missed = eval::missed_contact_bounds(report);
   if (missed.empty()) return;

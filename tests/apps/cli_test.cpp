@@ -112,8 +112,8 @@ TEST(WalkCommand, RefusesBeforeWritingAnything) {
 
 TEST(WalkCommand, WarnsWhenTheWalkMissesTheContactBounds) {
   // The default set meets them; the heavy style at 0.67 m steps lands its heel skimming the
-  // ground, about 2 mm a frame within the last 2 mm (README, "Step lengths"). Both write their
-  // files.
+  // ground, about 2 mm a frame within the last 2 mm (docs/walk.md, "Step lengths"). Both write
+  // their files.
   const auto sound = run_program("walk --cycles 3 -o " + shell_quoted(scratch("sound")));
   ASSERT_EQ(sound.status, 0) << sound.output;
   EXPECT_THAT(sound.output, Not(HasSubstr("warning")));

@@ -98,8 +98,8 @@ TEST(Acceptance, ShortestAcceptedStepIsSound) {
 
 // The styles' shortest steps (their manifests' shortest_step_leg_lengths) are where their walks
 // stop breaking down: from there up, slip stays within a few millimetres a frame and the step
-// within 10 % of the command. They miss the default's tighter bounds at some steps (README, "Step
-// lengths"), but none slides like a walk below its shortest step.
+// within 10 % of the command. They miss the default's tighter bounds at some steps (docs/walk.md,
+// "Step lengths"), but none slides like a walk below its shortest step.
 TEST(Acceptance, StylesHoldTogetherFromTheirShortestStep) {
   for (const char* name : {"energetic", "heavy", "cautious"}) {
     const gait::ControllerSet set = gait::ControllerSet::builtin(name);

@@ -1,4 +1,4 @@
-// How we measure a walk (DESIGN.md, "How we measure"): realism against normative curves,
+// How we measure a walk (docs/measuring.md): realism against normative curves,
 // contact quality, timing, and smoothness (velocity jumps at phase switches, angular acceleration
 // and jerk). Works on a Motion, recorded live or read back from a walk CSV, so every figure
 // comes from a command anyone can run.
@@ -106,7 +106,7 @@ GaitReport evaluate(const Motion& motion, const terrain::Terrain& terrain,
                     const Normative* reference = nullptr,
                     std::optional<double> commanded_step = std::nullopt);
 
-// The contact bounds of the acceptance (DESIGN.md, "How we measure") that the walk misses, one
+// The contact bounds of the acceptance (docs/measuring.md) that the walk misses, one
 // phrase each with its figure and bound ("foot slip 4.27 mm a frame (bound 1 mm)"): slip under
 // 1 mm a frame, penetration under 1 mm, mid-swing toe clearance at least 5 mm, and, with a
 // commanded step, a step error of at most 3 %. Empty when the walk meets them all.

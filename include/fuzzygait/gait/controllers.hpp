@@ -95,7 +95,7 @@ struct ControllerSet {
   // deeper on longer steps, as people's do. 0: no scaling.
   double swing_knee_reference_sweep = 0.0;
   // Shortest step, in leg lengths, that this set walks without losing its rhythm (measured over
-  // statures 1.50-2.00 m; README, "Step lengths"). The walker refuses shorter steps.
+  // statures 1.50-2.00 m; docs/walk.md, "Step lengths"). The walker refuses shorter steps.
   double shortest_step = 0.46;
   std::vector<Controller> controllers;  // indexed by slot()
 
