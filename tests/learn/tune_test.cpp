@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <set>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 #include "fuzzygait/gait/controllers.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/learn/cmaes.hpp"
+#include "support/bits.hpp"
 #include "support/walks.hpp"
 
 namespace fuzzygait {
@@ -206,6 +208,91 @@ TEST(WalkCost, TheAccelerationLimitCostsOnlyWhenSet) {
   const double limited = learn::walk_cost(test::default_set(), o);
   EXPECT_GT(limited - unlimited, 40.0);
   EXPECT_LT(limited - unlimited, 60.0);
+}
+
+// The normative curves of the recorded costs, loaded once: their conditions point at them.
+struct References {
+  eval::Normative free = io::load_normative("schwartz2008_free");
+  eval::Normative slow = io::load_normative("schwartz2008_slow");
+  eval::Normative fast = io::load_normative("schwartz2008_fast");
+};
+
+const References& references() {
+  static const References r;
+  return r;
+}
+
+// The default set with every parameter (velocities, inertia, knots) times `factor`.
+gait::ControllerSet scaled_default(double factor) {
+  const learn::SetParameters p(test::default_set());
+  std::vector<double> v = p.values();
+  for (double& x : v)
+    x *= factor;
+  return p.apply(v);
+}
+
+// The whole acceptance grid and two random starts, walked 6 s instead of 10: long enough for
+// every walk of the default set.
+learn::TuneOptions grid_options() {
+  learn::TuneOptions o;
+  o.conditions = learn::grid_conditions(references().free, references().slow, references().fast);
+  o.recovery_seeds = learn::recovery_seeds(2);
+  o.duration = 6.0;
+  return o;
+}
+
+// Bounds that a set off its tune crosses, so that the terms priced above them count too.
+learn::TuneOptions strained(learn::TuneOptions o) {
+  o.acceleration_ratio_max = 2.0;
+  o.heel_bounce_max = 0.01;
+  o.pelvis_range_min = 20.0;
+  o.pelvis_range_max = 60.0;
+  return o;
+}
+
+struct CostCase {
+  const char* name;
+  gait::ControllerSet set;
+  learn::TuneOptions options;
+  double recorded;  // its walk_cost() as recorded (GCC 12, x86-64)
+};
+
+// Between them, these walks give every term of the cost a part: the default set under the
+// default bounds, sets slower (x0.7) and faster (x1.5) than their tune under strained bounds
+// (words past their bound, unsettled random starts, toes scuffing, the knee peaking early and
+// late, slip, ...), a set whose slowest walks do not fit in 6 s, and a wild one (x10) that
+// falls over from its random starts.
+const std::vector<CostCase>& cost_cases() {
+  static const std::vector<CostCase> cases = [] {
+    learn::TuneOptions main_walk;
+    main_walk.conditions = {learn::main_condition(references().free)};
+    learn::TuneOptions wild = main_walk;
+    wild.recovery_seeds = learn::recovery_seeds(2);
+    return std::vector<CostCase>{
+        {"default set, no walks", test::default_set(), learn::TuneOptions{}, 0x1.0555555555555p+3},
+        {"default set, main walk", test::default_set(), main_walk, 0x1.f09dfb21fe122p+5},
+        {"default set, grid", test::default_set(), grid_options(), 0x1.0cdc0f5f434f7p+7},
+        {"slower set, strained grid", scaled_default(0.7), strained(grid_options()),
+         0x1.246be9e2b150ep+13},
+        {"faster set, strained grid", scaled_default(1.5), strained(grid_options()),
+         0x1.0c642c68aa446p+13},
+        {"cautious set, grid", gait::ControllerSet::builtin("cautious"), grid_options(),
+         0x1.a51c496e38af3p+12},
+        {"wild set, main walk", scaled_default(10.0), wild, 0x1.99e0d890ff932p+14},
+    };
+  }();
+  return cases;
+}
+
+// The cost's weights became named fields without changing what it computes: each case costs the
+// bits recorded from the cost with its weights written inline.
+TEST(WalkCost, DefaultWeightsCostTheRecordedBits) {
+  for (const CostCase& c : cost_cases()) {
+    const double cost = learn::walk_cost(c.set, c.options);
+    char bits[64];
+    std::snprintf(bits, sizeof bits, "%a", cost);
+    EXPECT_TRUE(test::same_bits(cost, c.recorded)) << c.name << ": " << bits;
+  }
 }
 
 // A tune of a few generations on the main walk against `reference` (which must outlive the
