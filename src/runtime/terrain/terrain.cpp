@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "runtime/common/format.hpp"
+
 namespace fuzzygait::terrain {
 
 Terrain::Terrain(std::vector<Point> points) : points_(std::move(points)) {
@@ -18,6 +20,20 @@ Terrain::Terrain(std::vector<Point> points) : points_(std::move(points)) {
   level_ = std::all_of(points_.begin(), points_.end(), [&](const Point& p) {
     return std::bit_cast<std::uint64_t>(p.y) == std::bit_cast<std::uint64_t>(points_[0].y);
   });
+  // Runs: the ground between risers.
+  double begin = points_.front().x;
+  for (std::size_t i = 0; i + 1 < points_.size(); ++i) {
+    if (std::abs(slopes_[i]) <= kSteepestFoothold) continue;
+    if (points_[i].x > begin) runs_.push_back({begin, points_[i].x});
+    begin = points_[i + 1].x;
+  }
+  runs_.push_back({begin, points_.back().x});
+}
+
+std::size_t Terrain::run_at(double x) const {
+  const auto after = std::upper_bound(runs_.begin(), runs_.end(), x,
+                                      [](double v, const Run& r) { return v < r.begin; });
+  return after == runs_.begin() ? 0 : static_cast<std::size_t>(after - runs_.begin()) - 1;
 }
 
 Terrain Terrain::flat() {
@@ -39,7 +55,151 @@ Terrain Terrain::polyline(std::vector<Point> points) {
                                   ": x must increase along the profile");
     }
   }
+  // Walls: consecutive segments too steep to stand on, and how high they climb or drop together.
+  double wall = 0.0;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    const double dx = points[i + 1].x - points[i].x;
+    const double dy = points[i + 1].y - points[i].y;
+    const bool steep = std::atan2(std::abs(dy), dx) > kSteepestFoothold;
+    wall = steep && (wall == 0.0 || (wall > 0.0) == (dy > 0.0)) ? wall + dy : (steep ? dy : 0.0);
+    if (std::abs(wall) > kTallestWall) {
+      throw std::invalid_argument("terrain point " + std::to_string(i + 1) + ": a wall " +
+                                  common::number_text(std::abs(wall), 3) +
+                                  " m high at x = " + common::number_text(points[i + 1].x, 3) +
+                                  " is taller than a leg climbs in a step (" +
+                                  common::number_text(kTallestWall) + " m)");
+    }
+  }
   return Terrain(std::move(points));
+}
+
+namespace {
+
+// "terrain piece N (KIND): " for the errors of a sequence.
+std::string piece_name(std::size_t index, const Terrain::Piece& p) {
+  const char* kinds[] = {"flat", "ramp", "stairs", "profile"};
+  return "terrain piece " + std::to_string(index + 1) + " (" + kinds[static_cast<int>(p.kind)] +
+         "): ";
+}
+
+void within(const std::string& where, const char* field, double value, double low, double high,
+            const char* unit) {
+  if (!(value >= low && value <= high)) {
+    throw std::invalid_argument(where + field + " must be between " + common::number_text(low) +
+                                " and " + common::number_text(high) + unit + ", got " +
+                                common::number_text(value));
+  }
+}
+
+}  // namespace
+
+Terrain::Piece Terrain::flat_piece(double length) {
+  Piece p;
+  p.kind = Piece::Kind::Flat;
+  p.length = length;
+  return p;
+}
+
+Terrain::Piece Terrain::ramp_piece(double degrees, double length) {
+  Piece p;
+  p.kind = Piece::Kind::Ramp;
+  p.degrees = degrees;
+  p.length = length;
+  return p;
+}
+
+Terrain::Piece Terrain::stairs_piece(double rise, double tread, int count) {
+  Piece p;
+  p.kind = Piece::Kind::Stairs;
+  p.rise = rise;
+  p.tread = tread;
+  p.count = count;
+  return p;
+}
+
+Terrain::Piece Terrain::profile_piece(std::vector<Point> points) {
+  Piece p;
+  p.kind = Piece::Kind::Profile;
+  p.points = std::move(points);
+  return p;
+}
+
+Terrain Terrain::sequence(std::span<const Piece> pieces, double start) {
+  within("terrain: ", "the start", start, -1e3, 1e3, " m");
+  std::vector<Point> points{{-kMaxCoordinate, 0.0}, {start, 0.0}};
+  constexpr double kLandingLength = 1.0;  // m of level ground after stairs that something follows
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const Piece& piece = pieces[i];
+    const std::string where = piece_name(i, piece);
+    const bool last = i + 1 == pieces.size();
+    const Point at = points.back();
+    switch (piece.kind) {
+      case Piece::Kind::Flat:
+        within(where, "length", piece.length, 0.01, 1e4, " m");
+        if (!last) points.push_back({at.x + piece.length, at.y});
+        break;
+      case Piece::Kind::Ramp: {
+        within(where, "angle", piece.degrees, -25.0, 25.0, " deg");
+        within(where, "length", piece.length, 0.01, 1e4, " m");
+        const double grade = std::tan(piece.degrees * (3.14159265358979323846 / 180.0));
+        // The last ramp goes on as far as the ground reaches.
+        double length = piece.length;
+        if (last) {
+          length = kMaxCoordinate - at.x;
+          if (grade != 0.0)
+            length = std::min(length, (kMaxCoordinate - std::abs(at.y)) / std::abs(grade));
+        }
+        if (piece.degrees != 0.0 || !last) points.push_back({at.x + length, at.y + grade * length});
+        break;
+      }
+      case Piece::Kind::Stairs: {
+        if (!(std::abs(piece.rise) >= 0.05 && std::abs(piece.rise) <= 0.25)) {
+          throw std::invalid_argument(where +
+                                      "rise must be between 0.05 and 0.25 m (-0.25 to "
+                                      "-0.05 going down), got " +
+                                      common::number_text(piece.rise));
+        }
+        within(where, "tread", piece.tread, 0.20, 0.40, " m");
+        within(where, "count", piece.count, 1, 200, " steps");
+        Point p = at;
+        for (int step = 0; step < piece.count; ++step) {
+          if (step > 0) p.x += piece.tread - kRiserWidth;
+          points.push_back(p);
+          p = {p.x + kRiserWidth, p.y + piece.rise};
+          points.push_back(p);
+        }
+        if (!last) points.push_back({p.x + kLandingLength, p.y});
+        break;
+      }
+      case Piece::Kind::Profile: {
+        if (piece.points.size() < 2) {
+          throw std::invalid_argument(where + "a profile needs at least two points");
+        }
+        const Point first = piece.points.front();
+        for (std::size_t k = 1; k < piece.points.size(); ++k) {
+          points.push_back(
+              {at.x + (piece.points[k].x - first.x), at.y + (piece.points[k].y - first.y)});
+        }
+        break;
+      }
+    }
+  }
+  if (points.back().x < kMaxCoordinate) points.push_back({kMaxCoordinate, points.back().y});
+  try {
+    return polyline(std::move(points));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("terrain: " + std::string(e.what()));
+  }
+}
+
+Terrain Terrain::ramp(double degrees, double start) {
+  const Piece piece = ramp_piece(degrees);
+  return sequence(std::span(&piece, 1), start);
+}
+
+Terrain Terrain::stairs(double rise, double tread, int count, double start) {
+  const Piece piece = stairs_piece(rise, tread, count);
+  return sequence(std::span(&piece, 1), start);
 }
 
 std::size_t Terrain::search_segment(double x) const {
