@@ -37,8 +37,12 @@ enum class Metric : std::uint8_t {
   Ankle,       // "ankle": ankle dorsiflexion
   Toe,         // "toe": MTP extension
   Sole,        // "sole": angle of the sole to the ground surface under it, toes up +
+  // "incline": the pitch of the step the body is making, uphill +: from where the swinging foot
+  // left the ground to where it will land (both legs read the same; in double support, the step
+  // just made). 0 on level ground, about the slope on a ramp, 31 up a stair of 0.17 x 0.28 m.
+  Incline,
 };
-inline constexpr int kMetricCount = 7;
+inline constexpr int kMetricCount = 8;
 std::string_view metric_name(Metric metric);
 std::optional<Metric> metric_from_name(std::string_view name);
 
@@ -99,9 +103,43 @@ struct ControllerSet {
   double shortest_step = 0.46;
   std::vector<Controller> controllers;  // indexed by slot()
 
+  // How the controllers change with the ground (the manifest's "terrain"): words for the incline
+  // (such as down, level, up) peaking at the given degrees, a strong triangular partition, and for
+  // a slot the controller of each word; a word a slot names no file for uses the slot's own
+  // controller. A slot's command is the words' commands weighted by their degrees (a fuzzy rule
+  // "if incline is up then the knee follows stance_knee_up"). No words: the slots' controllers
+  // everywhere.
+  struct Terrain {
+    std::vector<std::string> words;  // in order of their peaks
+    std::vector<double> peaks;       // degrees, increasing
+    // Words under which a swinging leg's delta runs to the knee's end position, the paper's
+    // ascent metric: the thigh where the leg, knee bent, puts the heel on the target (up stairs);
+    // under the others, where the straight leg's heel points at it.
+    std::vector<bool> ascent;
+    std::vector<Controller> controllers;  // the terrain files
+    // [slot][word]: index into `controllers`, or -1 for the slot's own controller.
+    std::array<std::vector<int>, kSlotCount> of_slot;
+    bool empty() const { return words.empty(); }
+  };
+  Terrain terrain;
+
   const Controller& at(LegPhase phase, Joint joint) const {
     return controllers[static_cast<std::size_t>(slot(phase, joint))];
   }
+  // The controller of `slot` for incline word `word` (its own for a word without a file).
+  const Controller& controller(int slot, std::size_t word) const;
+  // Every controller: the slots' and the terrain's.
+  std::size_t controller_count() const { return controllers.size() + terrain.controllers.size(); }
+  // The command of `slot` for these metrics: its controller's, or on terrain the incline words'
+  // blend. `workspaces` holds one workspace per controller, in controller_count() order (slots',
+  // then terrain's).
+  double evaluate(int slot, const MetricValues& metrics,
+                  std::vector<fuzzy::Workspace>& workspaces) const;
+  // Whether at this incline every slot of `phase` commands with its own controller alone (no
+  // terrain word with a file for one of them fires): then evaluate() is its controller's.
+  bool own_controllers_at(LegPhase phase, double incline) const;
+  // How far the ascent metric holds at this incline: the degrees of the ascent words, 0 to 1.
+  double ascent_weight(double incline) const;
 
   // Reads DIR/manifest.json and the FLL files it names.
   static ControllerSet load(const std::filesystem::path& directory);

@@ -94,6 +94,25 @@ class Terrain {
   // Index of the run holding x; x on a riser belongs to the run behind it.
   std::size_t run_at(double x) const;
 
+  // The x whose ground point lies `distance` metres (straight line) ahead of the ground point at
+  // from_x: from_x + distance on level ground, less on a ramp.
+  double ahead_along_ground(double from_x, double distance) const;
+
+  // Where a foot lands, stepping from a foot whose heel is at from_x and aiming its heel at
+  // wanted_x: the foot, heel to toe tip (foot_length metres along x), stands wholly on one run,
+  // `margin` clear of its ends, and at most one riser above or below from_x's run (one stair a
+  // step); of such places the nearest to wanted_x, the step lengthened or shortened. On a tread
+  // shorter than the foot, the toes stand `margin` clear of the riser ahead (going up) or the
+  // heel `margin` from the riser behind (going down), the other end reaching over an edge.
+  struct Foothold {
+    double heel_x;
+    std::size_t run;  // the run (tread) it aims at
+  };
+  Foothold foothold(double from_x, double wanted_x, double foot_length, double margin) const;
+
+  // The ground's corners (points) strictly between x0 and x1.
+  std::span<const Point> corners_between(double x0, double x1) const;
+
  private:
   explicit Terrain(std::vector<Point> points);
   // Index of the segment under x; inline for one-segment ground (a single slope).

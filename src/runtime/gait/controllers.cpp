@@ -1,5 +1,6 @@
 #include "fuzzygait/gait/controllers.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <set>
@@ -18,7 +19,7 @@ constexpr std::array<std::string_view, kSlotCount> kSlotNames = {
     "swing_hip",  "swing_knee",  "swing_ankle",  "swing_toe",
     "stance_hip", "stance_knee", "stance_ankle", "stance_toe"};
 constexpr std::array<std::string_view, kMetricCount> kMetricNames = {
-    "delta", "other_delta", "hip", "knee", "ankle", "toe", "sole"};
+    "delta", "other_delta", "hip", "knee", "ankle", "toe", "sole", "incline"};
 
 using fuzzygait::common::number_text;
 using fuzzygait::common::json::Value;
@@ -49,7 +50,168 @@ std::string text(const Value& manifest, const char* key, const std::string& sour
   return v->string;
 }
 
+std::size_t slot_index(std::string_view name) {
+  for (std::size_t s = 0; s < kSlotNames.size(); ++s) {
+    if (kSlotNames[s] == name) return s;
+  }
+  return kSlotNames.size();
+}
+
+// The manifest's "terrain": {"incline_deg": {WORD: PEAK, ...}, "controllers": {SLOT: {WORD:
+// FILE}}}.
+void read_terrain(const Value& terrain, const std::map<std::string, std::string>& files,
+                  const std::string& source, const std::string& manifest_source,
+                  ControllerSet& set) {
+  if (terrain.kind != Value::Kind::Object) {
+    throw std::invalid_argument(where(manifest_source, terrain) + "'terrain' must be an object");
+  }
+  const Value* words = terrain.find("incline_deg");
+  if (!words || words->kind != Value::Kind::Object || words->object.size() < 2) {
+    throw std::invalid_argument(where(manifest_source, words ? *words : terrain) +
+                                "'terrain' needs 'incline_deg': two or more words and the "
+                                "incline (degrees) where each holds fully");
+  }
+  std::vector<std::pair<double, std::string>> peaks;
+  for (const auto& [word, peak] : words->object) {
+    if (peak.kind != Value::Kind::Number || !(std::abs(peak.number) <= 90.0)) {
+      throw std::invalid_argument(where(manifest_source, peak) + "incline word '" + word +
+                                  "' must peak at a number of degrees between -90 and 90");
+    }
+    peaks.emplace_back(peak.number, word);
+  }
+  std::sort(peaks.begin(), peaks.end());
+  for (std::size_t i = 1; i < peaks.size(); ++i) {
+    if (peaks[i].first == peaks[i - 1].first) {
+      throw std::invalid_argument(where(manifest_source, *words) + "incline words '" +
+                                  peaks[i - 1].second + "' and '" + peaks[i].second +
+                                  "' peak at the same incline");
+    }
+  }
+  ControllerSet::Terrain& t = set.terrain;
+  for (const auto& [peak, word] : peaks) {
+    t.words.push_back(word);
+    t.peaks.push_back(peak);
+  }
+  for (std::vector<int>& of : t.of_slot)
+    of.assign(t.words.size(), -1);
+  t.ascent.assign(t.words.size(), false);
+  if (const Value* ascent = terrain.find("ascent")) {
+    if (ascent->kind != Value::Kind::Array) {
+      throw std::invalid_argument(where(manifest_source, *ascent) +
+                                  "'terrain.ascent' must list incline words");
+    }
+    for (const Value& word : ascent->array) {
+      const auto w = word.kind == Value::Kind::String
+                         ? std::find(t.words.begin(), t.words.end(), word.string)
+                         : t.words.end();
+      if (w == t.words.end()) {
+        throw std::invalid_argument(where(manifest_source, word) +
+                                    "'terrain.ascent' names a word not in 'incline_deg'");
+      }
+      t.ascent[static_cast<std::size_t>(w - t.words.begin())] = true;
+    }
+  }
+  const Value* slots = terrain.find("controllers");
+  if (!slots) return;
+  if (slots->kind != Value::Kind::Object) {
+    throw std::invalid_argument(where(manifest_source, *slots) +
+                                "'terrain.controllers' must map slots to their words' FLL files");
+  }
+  for (const auto& [slot, by_word] : slots->object) {
+    const std::size_t s = slot_index(slot);
+    if (s == kSlotNames.size()) {
+      throw std::invalid_argument(where(manifest_source, by_word) + "unknown controller slot '" +
+                                  slot + "'");
+    }
+    if (by_word.kind != Value::Kind::Object) {
+      throw std::invalid_argument(where(manifest_source, by_word) + "terrain controllers of '" +
+                                  slot + "' must map incline words to FLL files");
+    }
+    for (const auto& [word, file] : by_word.object) {
+      const auto w = std::find(t.words.begin(), t.words.end(), word);
+      if (w == t.words.end()) {
+        throw std::invalid_argument(where(manifest_source, file) + "'" + word +
+                                    "' is not an incline word of 'incline_deg'");
+      }
+      if (file.kind != Value::Kind::String) {
+        throw std::invalid_argument(where(manifest_source, file) + "terrain controller '" + slot +
+                                    "' for '" + word + "' must name an FLL file (a string)");
+      }
+      const auto text = files.find(file.string);
+      if (text == files.end()) {
+        throw std::invalid_argument(where(manifest_source, file) + "terrain controller '" + slot +
+                                    "' for '" + word + "' names '" + file.string +
+                                    "', which is not in the set");
+      }
+      const std::string path = source + "/" + file.string;
+      t.of_slot[s][static_cast<std::size_t>(w - t.words.begin())] =
+          static_cast<int>(t.controllers.size());
+      t.controllers.emplace_back(
+          fuzzy::read_fll(text->second, path, fuzzy::FllOptions{.finite_numbers = true}), path);
+    }
+  }
+}
+
 }  // namespace
+
+const Controller& ControllerSet::controller(int slot, std::size_t word) const {
+  const auto s = static_cast<std::size_t>(slot);
+  const int v = terrain.empty() ? -1 : terrain.of_slot[s][word];
+  return v < 0 ? controllers[s] : terrain.controllers[static_cast<std::size_t>(v)];
+}
+
+double ControllerSet::evaluate(int slot, const MetricValues& metrics,
+                               std::vector<fuzzy::Workspace>& workspaces) const {
+  const auto s = static_cast<std::size_t>(slot);
+  if (terrain.empty()) return controllers[s].evaluate(metrics, workspaces[s]);
+  const double incline = metrics[static_cast<std::size_t>(Metric::Incline)];
+  if (std::isnan(incline)) return controllers[s].evaluate(metrics, workspaces[s]);
+  // The incline words as the rules of a one-input partition controller whose consequents are
+  // their controllers' commands (fuzzy::evaluate_partition's order and tolerance).
+  const fuzzy::PartitionDegrees<double> d =
+      fuzzy::partition_degrees(terrain.peaks.data(), terrain.peaks.size(), incline);
+  double sum = 0.0;
+  double weights = 0.0;
+  auto fire = [&](double degree, std::size_t word) {
+    if (!(degree >= fuzzy::kTolerance)) return;
+    const int v = terrain.of_slot[s][word];
+    const double command =
+        v < 0 ? controllers[s].evaluate(metrics, workspaces[s])
+              : terrain.controllers[static_cast<std::size_t>(v)].evaluate(
+                    metrics, workspaces[controllers.size() + static_cast<std::size_t>(v)]);
+    sum += degree * command;
+    weights += degree;
+  };
+  fire(d.lower_degree, d.lower);
+  if (d.lower + 1 < terrain.peaks.size()) fire(d.upper_degree, d.lower + 1);
+  return sum / weights;
+}
+
+bool ControllerSet::own_controllers_at(LegPhase phase, double incline) const {
+  if (terrain.empty() || std::isnan(incline)) return true;
+  const fuzzy::PartitionDegrees<double> d =
+      fuzzy::partition_degrees(terrain.peaks.data(), terrain.peaks.size(), incline);
+  auto own = [&](double degree, std::size_t word) {
+    if (!(degree >= fuzzy::kTolerance) || word >= terrain.words.size()) return true;
+    for (int j = 0; j < 4; ++j) {
+      if (terrain.of_slot[static_cast<std::size_t>(slot(phase, static_cast<Joint>(j)))][word] >= 0)
+        return false;
+    }
+    return true;
+  };
+  return own(d.lower_degree, d.lower) && own(d.upper_degree, d.lower + 1);
+}
+
+double ControllerSet::ascent_weight(double incline) const {
+  if (terrain.empty() || std::isnan(incline)) return 0.0;
+  const fuzzy::PartitionDegrees<double> d =
+      fuzzy::partition_degrees(terrain.peaks.data(), terrain.peaks.size(), incline);
+  double weight = terrain.ascent[d.lower] ? d.lower_degree : 0.0;
+  if (d.lower + 1 < terrain.ascent.size() && terrain.ascent[d.lower + 1]) {
+    weight += d.upper_degree;
+  }
+  return weight;
+}
 
 std::string_view slot_name(int slot) {
   return kSlotNames.at(static_cast<std::size_t>(slot));
@@ -175,6 +337,9 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
     const std::string path = source + "/" + file->string;
     set.controllers.emplace_back(
         fuzzy::read_fll(text->second, path, fuzzy::FllOptions{.finite_numbers = true}), path);
+  }
+  if (const Value* terrain = manifest.find("terrain")) {
+    read_terrain(*terrain, files, source, manifest_source, set);
   }
   return set;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -54,6 +55,8 @@ constexpr double kReflexSpeed = 10.0;
 // set's: ControllerSet::shortest_step.)
 constexpr double kLongestStep = 1.2;
 constexpr double kShortestTimeStep = 1e-5;
+// How far a foot's heel and toes keep from a tread's edges (m).
+constexpr double kFootholdMargin = 0.005;
 constexpr double kLongestTimeStep = 0.05;
 
 double thigh_of(double tilt, const LegAngles& a) {
@@ -100,21 +103,38 @@ double bisect(double good, double bad, Ok ok) {
   return good;
 }
 
-// The ground's height under a foot's heel, ball and toe tip.
+// How far the ground's corners (a stair's nosing, the top of a kerb) rise through the segment from
+// a to b: the largest height of a corner above the segment, -infinity when none lies under it.
+double corner_depth(const terrain::Terrain& terrain, Point a, Point b) {
+  if (b.x < a.x) std::swap(a, b);
+  double depth = -std::numeric_limits<double>::infinity();
+  for (const Point& c : terrain.corners_between(a.x, b.x)) {
+    const double y = a.y + (b.y - a.y) * (c.x - a.x) / (b.x - a.x);
+    depth = std::max(depth, c.y - y);
+  }
+  return depth;
+}
+
+// The ground's height under a foot's heel, ball and toe tip, and the corners under its sole and
+// toes.
 struct FootGround {
   double heel;
   double ball;
   double tip;
+  double sole_corners;  // corner_depth of heel-ball
+  double toe_corners;   // and of ball-tip
 };
 FootGround ground_under(const terrain::Terrain& terrain, const LegPoints& p) {
-  return {terrain.height(p.heel.x), terrain.height(p.ball.x), terrain.height(p.tip.x)};
+  return {terrain.height(p.heel.x), terrain.height(p.ball.x), terrain.height(p.tip.x),
+          corner_depth(terrain, p.heel, p.ball), corner_depth(terrain, p.ball, p.tip)};
 }
 
-// How deep the heel, ball or (with_tip) toe tip is below the ground (negative when all are
-// above).
+// How deep the foot is in the ground: its heel, ball or (with_tip) toe tip below the ground, or a
+// corner of the ground through its sole or toes (negative when all is above).
 double foot_depth(const LegPoints& p, const FootGround& ground, bool with_tip = true) {
-  const double sole = std::max(ground.heel - p.heel.y, ground.ball - p.ball.y);
-  return with_tip ? std::max(sole, ground.tip - p.tip.y) : sole;
+  const double sole =
+      std::max({ground.heel - p.heel.y, ground.ball - p.ball.y, ground.sole_corners});
+  return with_tip ? std::max({sole, ground.tip - p.tip.y, ground.toe_corners}) : sole;
 }
 
 Point contact_point(const LegPoints& p, Phase phase) {
@@ -217,10 +237,11 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
         number_text(kLongestStep) + " leg lengths, the reach of these legs), got " +
         number_text(options.step_length) + " m");
   }
-  workspaces_.reserve(static_cast<std::size_t>(kSlotCount));
-  for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
-    workspaces_.push_back(controllers.controllers[s].make_workspace());
-  }
+  workspaces_.reserve(controllers.controller_count());
+  for (const Controller& c : controllers.controllers)
+    workspaces_.push_back(c.make_workspace());
+  for (const Controller& c : controllers.terrain.controllers)
+    workspaces_.push_back(c.make_workspace());
   events_.reserve(kEventCapacity);
   // Angle between the thigh and the hip-heel line of a straight leg with a neutral ankle.
   const LegPoints straight = rig::forward_kinematics(segments_, {0.0, 0.0}, 0.0, LegAngles{});
@@ -424,6 +445,7 @@ void Walker::warm_up(double seconds) {
     l.anchor.x -= shift;
     l.target_x -= shift;
     l.strike_x -= shift;
+    l.step_from_x -= shift;
     l.swing_start -= state_.time;
   }
   state_.time = 0.0;
@@ -466,7 +488,14 @@ void Walker::lift_off(int leg) {
   const int lead = state_.lead;
   const double from =
       (lead >= 0 && lead != leg) ? state_.legs[static_cast<std::size_t>(lead)].strike_x : p.heel.x;
-  l.target_x = from + step_length_;
+  // A step of the commanded length along the ground, moved to where the whole foot stands on one
+  // tread, at most a stair up or down.
+  const terrain::Terrain::Foothold target =
+      terrain_->foothold(from, terrain_->ahead_along_ground(from, step_length_),
+                         segments_.foot_length(), kFootholdMargin);
+  l.step_from_x = l.strike_x;
+  l.target_x = target.heel_x;
+  l.target_run = target.run;
 }
 
 void Walker::place_pelvis(int leg) {
@@ -656,15 +685,20 @@ void Walker::clear_ground(int leg, double max_change, double margin, bool with_t
 }
 
 FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, const LegPoints& p,
-                                                          MetricValues& m) {
+                                                          double ascent, MetricValues& m) {
   LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
   const double tilt = w.state_.pelvis_tilt;
   const double thigh = thigh_of(tilt, l.angles);
   double end = l.sweep_end;
   if (l.phase == Phase::Swing) {
-    // Arrived when the thigh is where a straight leg's heel would point at the foot target.
+    // Arrived when the thigh is where a straight leg's heel would point at the foot target; going
+    // up (ascent > 0), where the leg with its knee bent puts the heel on it (if it can).
     const Point target{l.target_x, w.terrain_->height(l.target_x)};
     end = inclination(p.hip, target) + w.heel_offset_;
+    if (ascent > 0.0) {
+      const double bent = knee_end_thigh(w, leg, p.hip, target);
+      if (!std::isnan(bent)) end += ascent * (bent - end);
+    }
     l.sweep_end = end;
   }
   l.delta = progress(thigh, l.sweep_start, end);
@@ -681,6 +715,7 @@ FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, co
 // (rather than between the two legs' integrations) they took 3 % less of a step.
 void WalkerStages::command(Walker& w, StepData& d) {
   const ControllerBackend* backend = w.backend_;
+  const ControllerSet& set = *w.controllers_;
   FUZZYGAIT_UNROLL(2)
   for (std::size_t leg = 0; leg < 2; ++leg) {
     const LegPhase phase =
@@ -689,9 +724,23 @@ void WalkerStages::command(Walker& w, StepData& d) {
     FUZZYGAIT_UNROLL(4)
     for (std::size_t joint = 0; joint < 4; ++joint) {
       const auto s = static_cast<std::size_t>(slot(phase, static_cast<Joint>(joint)));
-      d.commands[leg][joint] = backend
-                                   ? backend->evaluate(static_cast<int>(s), m)
-                                   : w.controllers_->controllers[s].evaluate(m, w.workspaces_[s]);
+      d.commands[leg][joint] = backend ? backend->evaluate(static_cast<int>(s), m)
+                                       : set.controllers[s].evaluate(m, w.workspaces_[s]);
+    }
+  }
+  if (!backend && !set.terrain.empty()) command_on_terrain(w, d);
+}
+
+void WalkerStages::command_on_terrain(Walker& w, StepData& d) {
+  const ControllerSet& set = *w.controllers_;
+  for (std::size_t leg = 0; leg < 2; ++leg) {
+    const LegPhase phase =
+        w.state_.legs[leg].phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
+    const MetricValues& m = d.metrics[leg];
+    if (set.own_controllers_at(phase, m[static_cast<std::size_t>(Metric::Incline)])) continue;
+    for (std::size_t joint = 0; joint < 4; ++joint) {
+      d.commands[leg][joint] =
+          set.evaluate(slot(phase, static_cast<Joint>(joint)), m, w.workspaces_);
     }
   }
 }
@@ -740,14 +789,52 @@ void WalkerStages::measure(Walker& w, StepData& d) {
     }
   }
   std::array<MetricValues, 2>& metrics = d.metrics;
+  const double incline = step_incline(w);
+  const double ascent = w.controllers_->ascent_weight(incline);
   for (int leg = 0; leg < 2; ++leg) {
-    update_metrics(w, leg, w.end_points_[static_cast<std::size_t>(leg)],
+    update_metrics(w, leg, w.end_points_[static_cast<std::size_t>(leg)], ascent,
                    metrics[static_cast<std::size_t>(leg)]);
   }
   const auto other_delta = static_cast<std::size_t>(Metric::OtherDelta);
   const auto delta = static_cast<std::size_t>(Metric::Delta);
   metrics[0][other_delta] = metrics[1][delta];
   metrics[1][other_delta] = metrics[0][delta];
+  metrics[0][static_cast<std::size_t>(Metric::Incline)] = incline;
+  metrics[1][static_cast<std::size_t>(Metric::Incline)] = incline;
+}
+
+// The paper's end position of the knee: the thigh's inclination when hip and knee put the heel on
+// `target` with the knee bent forward (two-link IK, the ankle as it is); NaN out of reach.
+double WalkerStages::knee_end_thigh(const Walker& w, int leg, Point hip, Point target) {
+  const rig::Segments& s = w.segments_;
+  const rig::detail::SinCos ankle =
+      sin_cos(w.state_.legs[static_cast<std::size_t>(leg)].angles.ankle);
+  const double we = -s.heel * ankle.cos + s.ankle_height * ankle.sin;
+  const double wn = -s.heel * ankle.sin - s.ankle_height * ankle.cos - s.shank;
+  const double lower = std::sqrt(we * we + wn * wn);
+  const double distance = std::hypot(target.x - hip.x, target.y - hip.y);
+  if (!(distance < s.thigh + lower) || !(distance > std::abs(s.thigh - lower))) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const double cos_hip =
+      (s.thigh * s.thigh + distance * distance - lower * lower) / (2.0 * s.thigh * distance);
+  return inclination(hip, target) + arccos(std::clamp(cos_hip, -1.0, 1.0));
+}
+
+// The pitch of the step the body is making (degrees, uphill +): the swinging foot's, from where
+// it left to where it lands; in double support the step just made; 0 while airborne.
+double WalkerStages::step_incline(const Walker& w) {
+  const WalkerState& s = w.state_;
+  if (s.lead < 0) return 0.0;
+  const LegState& a = s.legs[0];
+  const LegState& b = s.legs[1];
+  // The swinging leg, else the leg that struck last (the one not carrying the pelvis).
+  const LegState& stepping =
+      a.phase == Phase::Swing ? a : (b.phase == Phase::Swing ? b : s.legs[1 - s.lead]);
+  const double to_x = stepping.phase == Phase::Swing ? stepping.target_x : stepping.strike_x;
+  const double from_x = stepping.step_from_x;
+  const double rise = w.terrain_->height(to_x) - w.terrain_->height(from_x);
+  return rig::degrees(arctan2(rise, to_x - from_x));
 }
 
 void WalkerStages::integrate(Walker& w, double h, StepData& d) {

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -161,10 +162,12 @@ Terrain Terrain::sequence(std::span<const Piece> pieces, double start) {
         }
         within(where, "tread", piece.tread, 0.20, 0.40, " m");
         within(where, "count", piece.count, 1, 200, " steps");
-        Point p = at;
+        Point p = at;  // the foot of the first riser: the last point already
         for (int step = 0; step < piece.count; ++step) {
-          if (step > 0) p.x += piece.tread - kRiserWidth;
-          points.push_back(p);
+          if (step > 0) {
+            p.x += piece.tread - kRiserWidth;
+            points.push_back(p);
+          }
           p = {p.x + kRiserWidth, p.y + piece.rise};
           points.push_back(p);
         }
@@ -207,6 +210,63 @@ std::size_t Terrain::search_segment(double x) const {
                                    [](double v, const Point& p) { return v < p.x; });
   const std::size_t i = static_cast<std::size_t>(it - points_.begin());
   return std::clamp<std::size_t>(i == 0 ? 0 : i - 1, 0, points_.size() - 2);
+}
+
+double Terrain::ahead_along_ground(double from_x, double distance) const {
+  const double to = from_x + distance;
+  if (level_ || corners_between(from_x, to).empty()) {
+    const double y0 = height(from_x);
+    if (height(to) == y0) return to;  // level between: exactly the distance ahead
+  }
+  // The straight distance to the ground point at x grows with x on ground a foot stands on.
+  const double y0 = height(from_x);
+  double near = from_x;
+  double far = to;
+  for (int i = 0; i < 50; ++i) {
+    const double mid = 0.5 * (near + far);
+    (std::hypot(mid - from_x, height(mid) - y0) < distance ? near : far) = mid;
+  }
+  return near;
+}
+
+std::span<const Point> Terrain::corners_between(double x0, double x1) const {
+  const auto first = std::upper_bound(points_.begin(), points_.end(), x0,
+                                      [](double v, const Point& p) { return v < p.x; });
+  const auto last =
+      std::lower_bound(first, points_.end(), x1, [](const Point& p, double v) { return p.x < v; });
+  return {first, last};
+}
+
+Terrain::Foothold Terrain::foothold(double from_x, double wanted_x, double foot_length,
+                                    double margin) const {
+  const std::size_t from_run = run_at(from_x);
+  // The heels a run holds whole feet at, [low, high] (low > high: the run is too short).
+  auto heels = [&](std::size_t r) {
+    return std::pair{runs_[r].begin + margin, runs_[r].end - margin - foot_length};
+  };
+  Foothold best{wanted_x, from_run};
+  double best_distance = std::numeric_limits<double>::infinity();
+  auto consider = [&](double heel, std::size_t r) {
+    const double distance = std::abs(heel - wanted_x);
+    if (distance < best_distance) {
+      best = {heel, r};
+      best_distance = distance;
+    }
+  };
+  // This run, ahead of the foot, and the next.
+  for (std::size_t r = from_run; r <= from_run + 1 && r < runs_.size(); ++r) {
+    auto [low, high] = heels(r);
+    if (r == from_run) low = std::max(low, from_x);
+    if (low <= high) {
+      consider(std::clamp(wanted_x, low, high), r);
+    } else if (r > from_run) {
+      // A tread shorter than the foot: the ball on it, toes clear of the riser ahead (going up)
+      // or the heel against the riser behind (going down).
+      const bool up = height(0.5 * (runs_[r].begin + runs_[r].end)) > height(from_x);
+      consider(up ? runs_[r].end - margin - foot_length : runs_[r].begin + margin, r);
+    }
+  }
+  return best;
 }
 
 std::vector<Point> Terrain::profile(double x0, double x1) const {
