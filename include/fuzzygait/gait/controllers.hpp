@@ -37,9 +37,9 @@ enum class Metric : std::uint8_t {
   Ankle,       // "ankle": ankle dorsiflexion
   Toe,         // "toe": MTP extension
   Sole,        // "sole": angle of the sole to the ground surface under it, toes up +
-  // "incline": the pitch of the step the body is making, uphill +: from where the swinging foot
-  // left the ground to where it will land (both legs read the same; in double support, the step
-  // just made). 0 on level ground, about the slope on a ramp, 31 up a stair of 0.17 x 0.28 m.
+  // "incline": the pitch of the ground the body is walking on, uphill +, degrees: the steeper of
+  // the ground's pitches at the two feet's footholds (Terrain::pitch: a ramp's slope, a stair's
+  // rise over its tread). 0 on level ground, 10 on a 10 deg ramp, 31 up stairs of 0.17 x 0.28 m.
   Incline,
 };
 inline constexpr int kMetricCount = 8;

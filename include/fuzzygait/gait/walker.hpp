@@ -176,6 +176,7 @@ class Walker {
   double follow_step_ = 0.0;  // the h of follow_
   double follow_ = 0.0;       // share of the way a joint's velocity goes to its command in h
   double heel_offset_ = 0.0;
+  double reach_ = 0.0;  // hip to heel of the straight leg, neutral ankle
   WalkerState state_;
   // One per slot, on the heap: the fast path never reads them, and a crowd streams its walkers
   // through the caches every frame.

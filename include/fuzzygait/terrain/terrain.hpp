@@ -89,10 +89,16 @@ class Terrain {
   struct Run {
     double begin;  // x where it starts (a riser's top or foot ends there)
     double end;    // x where it ends
+    double pitch;  // a tread's pitch (radians); NaN for a longer run
   };
   const std::vector<Run>& runs() const { return runs_; }
   // Index of the run holding x; x on a riser belongs to the run behind it.
   std::size_t run_at(double x) const;
+  // The pitch of the ground a foot stands on at x (radians, uphill forward +): on a tread (a run
+  // shorter than kLongestTread between risers) the rise of its risers over its length, as a
+  // stair's pitch line; elsewhere the slope.
+  double pitch(double x) const;
+  static constexpr double kLongestTread = 0.6;  // m
 
   // The x whose ground point lies `distance` metres (straight line) ahead of the ground point at
   // from_x: from_x + distance on level ground, less on a ramp.

@@ -57,6 +57,9 @@ constexpr double kLongestStep = 1.2;
 constexpr double kShortestTimeStep = 1e-5;
 // How far a foot's heel and toes keep from a tread's edges (m).
 constexpr double kFootholdMargin = 0.005;
+// A swinging leg aims to land with its knee bent where its target lies more than this (m) within
+// the straight leg's reach, fully at twice this: level steps end a few millimetres within it.
+constexpr double kStraightLanding = 0.02;
 constexpr double kLongestTimeStep = 0.05;
 
 double thigh_of(double tilt, const LegAngles& a) {
@@ -246,6 +249,7 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
   // Angle between the thigh and the hip-heel line of a straight leg with a neutral ankle.
   const LegPoints straight = rig::forward_kinematics(segments_, {0.0, 0.0}, 0.0, LegAngles{});
   heel_offset_ = -inclination(straight.hip, straight.heel);
+  reach_ = std::hypot(straight.heel.x - straight.hip.x, straight.heel.y - straight.hip.y);
   start(options.start);
 }
 
@@ -600,8 +604,12 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
       }
       break;
     }
-    case Phase::Ball:
-      if (foot_of(tilt, l.angles) >= slope) {
+    case Phase::Ball: {
+      const rig::detail::SinCos along = sin_cos(slope);
+      const double heel_x = l.anchor.x - sole_length * along.cos;
+      // The heel comes back down where there is ground under it (not over a stair's edge).
+      if (foot_of(tilt, l.angles) >= slope &&
+          terrain_->run_at(heel_x) == terrain_->run_at(l.anchor.x)) {
         // The heel came back down.
         l.phase = Phase::Flat;
         l.angles.ankle = slope - shank_of(tilt, l.angles);
@@ -611,6 +619,7 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
       }
       l.angles.toe = slope - foot_of(tilt, l.angles);
       break;
+    }
     case Phase::Swing:
       break;
   }
@@ -691,13 +700,16 @@ FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, co
   const double thigh = thigh_of(tilt, l.angles);
   double end = l.sweep_end;
   if (l.phase == Phase::Swing) {
-    // Arrived when the thigh is where a straight leg's heel would point at the foot target; going
-    // up (ascent > 0), where the leg with its knee bent puts the heel on it (if it can).
+    // Arrived when the thigh is where a straight leg's heel would point at the foot target; under
+    // the set's ascent words (up a stair), where the target lies well within the leg's reach, where
+    // the leg with its knee bent puts the heel on it: the paper's end position of the knee.
     const Point target{l.target_x, w.terrain_->height(l.target_x)};
     end = inclination(p.hip, target) + w.heel_offset_;
     if (ascent > 0.0) {
+      const double within = w.reach_ - std::hypot(target.x - p.hip.x, target.y - p.hip.y);
       const double bent = knee_end_thigh(w, leg, p.hip, target);
-      if (!std::isnan(bent)) end += ascent * (bent - end);
+      const double weight = ascent * std::clamp(within / kStraightLanding - 1.0, 0.0, 1.0);
+      if (weight > 0.0 && !std::isnan(bent)) end += weight * (bent - end);
     }
     l.sweep_end = end;
   }
@@ -789,18 +801,29 @@ void WalkerStages::measure(Walker& w, StepData& d) {
     }
   }
   std::array<MetricValues, 2>& metrics = d.metrics;
-  const double incline = step_incline(w);
-  const double ascent = w.controllers_->ascent_weight(incline);
+  const std::array<double, 2> incline = leg_inclines(w);
   for (int leg = 0; leg < 2; ++leg) {
-    update_metrics(w, leg, w.end_points_[static_cast<std::size_t>(leg)], ascent,
-                   metrics[static_cast<std::size_t>(leg)]);
+    const auto k = static_cast<std::size_t>(leg);
+    update_metrics(w, leg, w.end_points_[k], w.controllers_->ascent_weight(incline[k]), metrics[k]);
+    metrics[k][static_cast<std::size_t>(Metric::Incline)] = incline[k];
   }
   const auto other_delta = static_cast<std::size_t>(Metric::OtherDelta);
   const auto delta = static_cast<std::size_t>(Metric::Delta);
   metrics[0][other_delta] = metrics[1][delta];
   metrics[1][other_delta] = metrics[0][delta];
-  metrics[0][static_cast<std::size_t>(Metric::Incline)] = incline;
-  metrics[1][static_cast<std::size_t>(Metric::Incline)] = incline;
+}
+
+// Each leg's incline (degrees, uphill +): the steeper pitch of the ground at the two feet's
+// footholds (a swinging foot's target, a planted foot's anchor), so that both legs take the
+// stairs from the step onto the first tread to the step off the last.
+std::array<double, 2> WalkerStages::leg_inclines(const Walker& w) {
+  std::array<double, 2> pitch{};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const LegState& l = w.state_.legs[k];
+    pitch[k] = rig::degrees(w.terrain_->pitch(l.phase == Phase::Swing ? l.target_x : l.anchor.x));
+  }
+  const double steeper = std::abs(pitch[1]) > std::abs(pitch[0]) ? pitch[1] : pitch[0];
+  return {steeper, steeper};
 }
 
 // The paper's end position of the knee: the thigh's inclination when hip and knee put the heel on
@@ -819,22 +842,6 @@ double WalkerStages::knee_end_thigh(const Walker& w, int leg, Point hip, Point t
   const double cos_hip =
       (s.thigh * s.thigh + distance * distance - lower * lower) / (2.0 * s.thigh * distance);
   return inclination(hip, target) + arccos(std::clamp(cos_hip, -1.0, 1.0));
-}
-
-// The pitch of the step the body is making (degrees, uphill +): the swinging foot's, from where
-// it left to where it lands; in double support the step just made; 0 while airborne.
-double WalkerStages::step_incline(const Walker& w) {
-  const WalkerState& s = w.state_;
-  if (s.lead < 0) return 0.0;
-  const LegState& a = s.legs[0];
-  const LegState& b = s.legs[1];
-  // The swinging leg, else the leg that struck last (the one not carrying the pelvis).
-  const LegState& stepping =
-      a.phase == Phase::Swing ? a : (b.phase == Phase::Swing ? b : s.legs[1 - s.lead]);
-  const double to_x = stepping.phase == Phase::Swing ? stepping.target_x : stepping.strike_x;
-  const double from_x = stepping.step_from_x;
-  const double rise = w.terrain_->height(to_x) - w.terrain_->height(from_x);
-  return rig::degrees(arctan2(rise, to_x - from_x));
 }
 
 void WalkerStages::integrate(Walker& w, double h, StepData& d) {
@@ -917,14 +924,20 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
       LegPoints p = leg_points(w, leg, w.state_.pelvis, l.angles);
       // A swing that drags on (a leg stuck in a deep crouch after an awkward start) gives up
       // and puts the foot down where it is.
-      const bool arriving = l.delta >= kLandingDelta || w.state_.lead < 0 ||
+      // It lands only over its foothold's tread, no edge under its sole: elsewhere the ground is
+      // an obstacle it keeps clear of.
+      FootGround ground = ground_under(*w.terrain_, p);
+      const bool over_target =
+          w.terrain_->run_at(p.ball.x) == l.target_run && !(ground.sole_corners >= 0.0);
+      const bool arriving = (l.delta >= kLandingDelta && over_target) || w.state_.lead < 0 ||
                             w.state_.time - l.swing_start > kLongestSwing;
       const double knee_clearance = p.knee.y - w.terrain_->height(p.knee.x);
       // The clearance wanted grows from nothing at toe off and fades again before landing, so
       // the reflex never jerks the knee when the foot leaves or reaches the ground.
-      const double margin = kSwingClearance * std::clamp((l.delta + 1.0) / 0.5, 0.0, 1.0) *
-                            std::clamp((kLandingDelta - l.delta) / 0.3, 0.0, 1.0);
-      FootGround ground = ground_under(*w.terrain_, p);
+      const double margin = over_target
+                                ? kSwingClearance * std::clamp((l.delta + 1.0) / 0.5, 0.0, 1.0) *
+                                      std::clamp((kLandingDelta - l.delta) / 0.3, 0.0, 1.0)
+                                : kSwingClearance;
       if ((!arriving && foot_depth(p, ground) > -margin) || knee_clearance < kSwingClearance) {
         w.clear_ground(leg, kReflexSpeed * h, margin);
         p = leg_points(w, leg, w.state_.pelvis, l.angles);

@@ -56,11 +56,11 @@ struct WalkerStages {
   static void place_pelvis(Walker& w, int leg, const rig::LegPoints& at_origin);
   // Height of a carrying leg's knee above the ground, from its points with the hip at the origin.
   static double knee_gap(const Walker& w, int leg, const rig::LegPoints& at_origin);
-  // `ascent`: how far the ascent metric holds (ControllerSet::ascent_weight).
+  // `ascent`: how far the set's ascent words hold (ControllerSet::ascent_weight).
   static void update_metrics(Walker& w, int leg, const rig::LegPoints& points, double ascent,
                              MetricValues& m);
   static double knee_end_thigh(const Walker& w, int leg, rig::Point hip, rig::Point target);
-  static double step_incline(const Walker& w);
+  static std::array<double, 2> leg_inclines(const Walker& w);
 
   // A walker, or a crowd, whose controllers `backend` evaluates (one per character, null for
   // the set's own engines).

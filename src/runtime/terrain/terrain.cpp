@@ -22,13 +22,36 @@ Terrain::Terrain(std::vector<Point> points) : points_(std::move(points)) {
     return std::bit_cast<std::uint64_t>(p.y) == std::bit_cast<std::uint64_t>(points_[0].y);
   });
   // Runs: the ground between risers.
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   double begin = points_.front().x;
   for (std::size_t i = 0; i + 1 < points_.size(); ++i) {
     if (std::abs(slopes_[i]) <= kSteepestFoothold) continue;
-    if (points_[i].x > begin) runs_.push_back({begin, points_[i].x});
+    if (points_[i].x > begin) runs_.push_back({begin, points_[i].x, kNaN});
     begin = points_[i + 1].x;
   }
-  runs_.push_back({begin, points_.back().x});
+  runs_.push_back({begin, points_.back().x, kNaN});
+  // A tread's pitch: the mean rise of the risers at its ends over its length.
+  for (std::size_t r = 0; r < runs_.size(); ++r) {
+    const double length = runs_[r].end - runs_[r].begin;
+    if (!(length < kLongestTread)) continue;
+    double rise = 0.0;
+    int risers = 0;
+    if (r > 0) {
+      rise += height(runs_[r].begin) - height(runs_[r - 1].end);
+      ++risers;
+    }
+    if (r + 1 < runs_.size()) {
+      rise += height(runs_[r + 1].begin) - height(runs_[r].end);
+      ++risers;
+    }
+    if (risers > 0) runs_[r].pitch = std::atan2(rise / risers, length);
+  }
+}
+
+double Terrain::pitch(double x) const {
+  if (level_) return 0.0;
+  const double tread = runs_[run_at(x)].pitch;
+  return std::isnan(tread) ? slope(x) : tread;
 }
 
 std::size_t Terrain::run_at(double x) const {
