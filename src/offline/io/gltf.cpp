@@ -124,7 +124,6 @@ void check_motion(const eval::Motion& motion) {
 
 struct Bone {
   std::string name;
-  int parent = -1;
   Vec3 offset;                           // from the parent, at rest
   Vec3 rest;                             // in the scene, at rest
   const detail::Joint* joint = nullptr;  // nullptr for the end leaves (not animated)
@@ -142,15 +141,14 @@ std::string end_name(const std::string& joint) {
 void flatten(const detail::Joint& joint, int parent, Vec3 offset, std::vector<Bone>& bones) {
   const int index = static_cast<int>(bones.size());
   const Vec3 rest = parent < 0 ? offset : bones[static_cast<std::size_t>(parent)].rest + offset;
-  bones.push_back({joint.name, parent, offset, rest, &joint, {}});
+  bones.push_back({joint.name, offset, rest, &joint, {}});
   if (parent >= 0) bones[static_cast<std::size_t>(parent)].children.push_back(index);
   for (const detail::Joint& child : joint.children) {
     flatten(child, index, child.offset, bones);
   }
   if (joint.end_site) {
     const int end = static_cast<int>(bones.size());
-    bones.push_back(
-        {end_name(joint.name), index, *joint.end_site, rest + *joint.end_site, nullptr, {}});
+    bones.push_back({end_name(joint.name), *joint.end_site, rest + *joint.end_site, nullptr, {}});
     bones[static_cast<std::size_t>(index)].children.push_back(end);
   }
 }
