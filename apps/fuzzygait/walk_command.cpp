@@ -12,6 +12,7 @@
 #include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/io/bvh.hpp"
 #include "fuzzygait/io/files.hpp"
+#include "fuzzygait/io/gltf.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
 #include "fuzzygait/plot/svg.hpp"
@@ -36,6 +37,7 @@ struct WalkOptions {
   std::string start_pose = "default";
   std::string prefix = "out/walk";
   std::string reference = "schwartz2008_free";
+  bool gltf = false;
 };
 
 gait::StartPose parse_start(const std::string& text) {
@@ -96,9 +98,13 @@ void add_walk_command(CLI::App& app) {
   walk->add_option("--start-pose", o->start_pose, "default, or random:SEED (awkward start)");
   walk->add_option("-o,--output", o->prefix, "Prefix of the files written (default out/walk)");
   walk->add_option("--reference", o->reference, "Normative curves for the plot and summary");
+  walk->add_flag("--gltf", o->gltf,
+                 "Also write PREFIX.glb: glTF 2.0 with the skeleton, the animation, a skinned "
+                 "body and the ground");
   walk->footer(
       "Writes PREFIX.csv (one row per frame), PREFIX.terrain.csv, PREFIX.bvh, PREFIX.svg\n"
-      "(joint angles over the gait cycle against the normative band) and PREFIX.poses.svg.");
+      "(joint angles over the gait cycle against the normative band) and PREFIX.poses.svg;\n"
+      "with --gltf also PREFIX.glb.");
   walk->callback([o, walk]() {
     // CLI11's range checks let NaN through (every comparison with it is false).
     if (walk->count("--duration") > 0 && !(o->duration > 0.0 && o->duration <= 36000.0)) {
@@ -140,10 +146,12 @@ void add_walk_command(CLI::App& app) {
     });
     io::write_file(o->prefix + ".bvh",
                    [&motion](std::ostream& out) { io::write_bvh(out, motion); });
+    if (o->gltf) io::write_gltf(o->prefix + ".glb", motion, ground);
     std::cout << "walked " << motion.frames.size() << " frames (" << motion.frames.back().time
               << " s) with controller set '" << set.name << "'\n";
     std::vector<std::string> written = {o->prefix + ".csv", o->prefix + ".terrain.csv",
                                         o->prefix + ".bvh"};
+    if (o->gltf) written.push_back(o->prefix + ".glb");
     try {
       const eval::GaitReport report = eval::evaluate(motion, ground, &reference, o->step);
       std::cout << "against " << reference.name << ":\n" << eval::to_text(report);
