@@ -68,15 +68,23 @@ std::vector<double> samples(const fuzzy::InputVariable& v) {
 
 TEST(ShippedControllers, FuzzyliteReadsEveryFileAndGivesFuzzygaitsOutputs) {
   const std::vector<fs::path> files = shipped_fll_files();
-  // Every file a manifest names is among them, and beyond the sets' eight files each only the
-  // FLL files outside the sets' folders (such as the paper's example).
+  // Every file a manifest names is among them (the eight slots' and the terrain words'), and
+  // beyond those only the FLL files outside the sets' folders (such as the paper's example).
   const std::vector<fs::path> sets = set_directories();
   ASSERT_FALSE(sets.empty()) << "no controller sets under " << kControllers;
   std::set<fs::path> named;
+  std::size_t in_sets = 0;
   for (const fs::path& dir : sets) {
     const gait::ControllerSet set = gait::ControllerSet::load(dir);
     ASSERT_EQ(set.controllers.size(), static_cast<std::size_t>(gait::kSlotCount)) << dir;
-    for (const gait::Controller& c : set.controllers) {
+    std::vector<const gait::Controller*> all;
+    for (const gait::Controller& c : set.controllers)
+      all.push_back(&c);
+    for (const gait::Controller& c : set.terrain_controllers)
+      all.push_back(&c);
+    in_sets += all.size();
+    for (const gait::Controller* controller : all) {
+      const gait::Controller& c = *controller;
       const fs::path source = fs::weakly_canonical(c.source());
       EXPECT_TRUE(named.insert(source).second) << source << " named twice";
       EXPECT_TRUE(std::any_of(files.begin(), files.end(),
@@ -88,7 +96,7 @@ TEST(ShippedControllers, FuzzyliteReadsEveryFileAndGivesFuzzygaitsOutputs) {
       static_cast<std::size_t>(std::count_if(files.begin(), files.end(), [](const fs::path& f) {
         return !fs::exists(f.parent_path() / "manifest.json");
       }));
-  ASSERT_EQ(files.size(), sets.size() * gait::kSlotCount + others)
+  ASSERT_EQ(files.size(), in_sets + others)
       << "FLL files in a set's folder that its manifest does not name";
   for (const fs::path& file : files) {
     SCOPED_TRACE(file.string());

@@ -98,23 +98,27 @@ class Terrain {
   // shorter than kLongestTread between risers) the rise of its risers over its length, as a
   // stair's pitch line; elsewhere the slope.
   double pitch(double x) const;
+  // Whether x lies on a tread (a run shorter than kLongestTread between risers).
+  bool on_tread(double x) const { return !level_ && !std::isnan(runs_[run_at(x)].pitch); }
   static constexpr double kLongestTread = 0.6;  // m
 
   // The x whose ground point lies `distance` metres (straight line) ahead of the ground point at
   // from_x: from_x + distance on level ground, less on a ramp.
   double ahead_along_ground(double from_x, double distance) const;
 
-  // Where a foot lands, stepping from a foot whose heel is at from_x and aiming its heel at
-  // wanted_x: the foot, heel to toe tip (foot_length metres along x), stands wholly on one run,
-  // `margin` clear of its ends, and at most one riser above or below from_x's run (one stair a
-  // step); of such places the nearest to wanted_x, the step lengthened or shortened. On a tread
-  // shorter than the foot, the toes stand `margin` clear of the riser ahead (going up) or the
-  // heel `margin` from the riser behind (going down), the other end reaching over an edge.
+  // Where a foot lands, stepping from a foot at from_x (its run is the one the foot stands on)
+  // whose heel aims at wanted_x: the foot, heel to toe tip (foot_length metres along x), stands
+  // wholly on one run, `margin` clear of its ends, and at most one riser above or below from_x's
+  // run (one stair a step). Where the wanted place is not such, the step is shortened to stop
+  // before the edge if it stays at least `shortest` metres ahead of from_x, else lengthened onto
+  // the next run. On a tread shorter than the foot, the toes stand `margin` clear of the riser
+  // ahead (going up) or the heel `margin` from the riser behind (going down).
   struct Foothold {
     double heel_x;
     std::size_t run;  // the run (tread) it aims at
   };
-  Foothold foothold(double from_x, double wanted_x, double foot_length, double margin) const;
+  Foothold foothold(double from_x, double wanted_x, double foot_length, double margin,
+                    double shortest = 0.0) const;
 
   // The ground's corners (points) strictly between x0 and x1.
   std::span<const Point> corners_between(double x0, double x1) const;

@@ -142,7 +142,7 @@ void Crowd::command(std::size_t first, std::size_t count) {
       for (std::size_t joint = 0; joint < 4; ++joint)
         steps_[i].commands[leg][joint] = out[joint * kLanesPerSlot];
     }
-    if (!controllers_->terrain.empty())
+    if (controllers_->has_terrain_words())
       WalkerStages::command_on_terrain(walkers_[first + i], steps_[i]);
   }
 }

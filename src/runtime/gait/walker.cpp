@@ -243,7 +243,7 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
   workspaces_.reserve(controllers.controller_count());
   for (const Controller& c : controllers.controllers)
     workspaces_.push_back(c.make_workspace());
-  for (const Controller& c : controllers.terrain.controllers)
+  for (const Controller& c : controllers.terrain_controllers)
     workspaces_.push_back(c.make_workspace());
   events_.reserve(kEventCapacity);
   // Angle between the thigh and the hip-heel line of a straight leg with a neutral ankle.
@@ -490,13 +490,14 @@ void Walker::lift_off(int leg) {
   l.swing_start = state_.time;
   l.sweep_start = thigh_of(state_.pelvis_tilt, l.angles);
   const int lead = state_.lead;
-  const double from =
-      (lead >= 0 && lead != leg) ? state_.legs[static_cast<std::size_t>(lead)].strike_x : p.heel.x;
+  const bool planted = lead >= 0 && lead != leg;
+  const LegState* other = planted ? &state_.legs[static_cast<std::size_t>(lead)] : nullptr;
+  const double from = other ? other->strike_x : p.heel.x;
   // A step of the commanded length along the ground, moved to where the whole foot stands on one
-  // tread, at most a stair up or down.
-  const terrain::Terrain::Foothold target =
-      terrain_->foothold(from, terrain_->ahead_along_ground(from, step_length_),
-                         segments_.foot_length(), kFootholdMargin);
+  // tread, at most a stair up or down from the tread the other foot stands on.
+  const terrain::Terrain::Foothold target = terrain_->foothold(
+      other ? other->anchor.x : from, terrain_->ahead_along_ground(from, step_length_),
+      segments_.foot_length(), kFootholdMargin, min_step_length());
   l.step_from_x = l.strike_x;
   l.target_x = target.heel_x;
   l.target_run = target.run;
@@ -694,7 +695,8 @@ void Walker::clear_ground(int leg, double max_change, double margin, bool with_t
 }
 
 FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, const LegPoints& p,
-                                                          double ascent, MetricValues& m) {
+                                                          double ascent, double landing_knee,
+                                                          MetricValues& m) {
   LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
   const double tilt = w.state_.pelvis_tilt;
   const double thigh = thigh_of(tilt, l.angles);
@@ -705,6 +707,12 @@ FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, co
     // the leg with its knee bent puts the heel on it: the paper's end position of the knee.
     const Point target{l.target_x, w.terrain_->height(l.target_x)};
     end = inclination(p.hip, target) + w.heel_offset_;
+    if (landing_knee > 0.0) {
+      // The thigh's angle to the hip-heel line of a leg landing with its knee bent so.
+      const LegPoints bent =
+          rig::forward_kinematics(w.segments_, {0.0, 0.0}, 0.0, LegAngles{0.0, landing_knee});
+      end = inclination(p.hip, target) - inclination(bent.hip, bent.heel);
+    }
     if (ascent > 0.0) {
       const double within = w.reach_ - std::hypot(target.x - p.hip.x, target.y - p.hip.y);
       const double bent = knee_end_thigh(w, leg, p.hip, target);
@@ -740,7 +748,7 @@ void WalkerStages::command(Walker& w, StepData& d) {
                                        : set.controllers[s].evaluate(m, w.workspaces_[s]);
     }
   }
-  if (!backend && !set.terrain.empty()) command_on_terrain(w, d);
+  if (!backend && set.has_terrain_words()) command_on_terrain(w, d);
 }
 
 void WalkerStages::command_on_terrain(Walker& w, StepData& d) {
@@ -749,7 +757,7 @@ void WalkerStages::command_on_terrain(Walker& w, StepData& d) {
     const LegPhase phase =
         w.state_.legs[leg].phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
     const MetricValues& m = d.metrics[leg];
-    if (set.own_controllers_at(phase, m[static_cast<std::size_t>(Metric::Incline)])) continue;
+    if (set.own_controllers_at(phase, m)) continue;
     for (std::size_t joint = 0; joint < 4; ++joint) {
       d.commands[leg][joint] =
           set.evaluate(slot(phase, static_cast<Joint>(joint)), m, w.workspaces_);
@@ -801,11 +809,14 @@ void WalkerStages::measure(Walker& w, StepData& d) {
     }
   }
   std::array<MetricValues, 2>& metrics = d.metrics;
-  const std::array<double, 2> incline = leg_inclines(w);
+  const std::array<LegGround, 2> ground = leg_ground(w);
+  const ControllerSet& set = *w.controllers_;
   for (int leg = 0; leg < 2; ++leg) {
     const auto k = static_cast<std::size_t>(leg);
-    update_metrics(w, leg, w.end_points_[k], w.controllers_->ascent_weight(incline[k]), metrics[k]);
-    metrics[k][static_cast<std::size_t>(Metric::Incline)] = incline[k];
+    metrics[k][static_cast<std::size_t>(Metric::Incline)] = ground[k].incline;
+    metrics[k][static_cast<std::size_t>(Metric::Stairs)] = ground[k].stairs;
+    update_metrics(w, leg, w.end_points_[k], set.ascent_weight(metrics[k]),
+                   set.landing_knee(metrics[k]), metrics[k]);
   }
   const auto other_delta = static_cast<std::size_t>(Metric::OtherDelta);
   const auto delta = static_cast<std::size_t>(Metric::Delta);
@@ -813,17 +824,28 @@ void WalkerStages::measure(Walker& w, StepData& d) {
   metrics[1][other_delta] = metrics[0][delta];
 }
 
-// Each leg's incline (degrees, uphill +): the steeper pitch of the ground at the two feet's
-// footholds (a swinging foot's target, a planted foot's anchor), so that both legs take the
-// stairs from the step onto the first tread to the step off the last.
-std::array<double, 2> WalkerStages::leg_inclines(const Walker& w) {
-  std::array<double, 2> pitch{};
+// Each leg's incline (degrees, uphill +) from the ground's pitch (Terrain::pitch) at the feet's
+// footholds, and whether it is a stair's. A swinging leg: the steeper of where it left and where
+// it lands (it lifts the foot over the edges between). A planted leg: going up, its own
+// foothold's (it lifts the body onto it); going down, the lower of its own and the other foot's
+// next (it lowers the body to it).
+std::array<WalkerStages::LegGround, 2> WalkerStages::leg_ground(const Walker& w) {
+  std::array<LegGround, 2> result{};
+  const terrain::Terrain& ground = *w.terrain_;
   for (std::size_t k = 0; k < 2; ++k) {
     const LegState& l = w.state_.legs[k];
-    pitch[k] = rig::degrees(w.terrain_->pitch(l.phase == Phase::Swing ? l.target_x : l.anchor.x));
+    const LegState& other = w.state_.legs[1 - k];
+    const bool swinging = l.phase == Phase::Swing;
+    const double a_x = swinging ? l.step_from_x : l.anchor.x;
+    const double b_x =
+        swinging ? l.target_x : (other.phase == Phase::Swing ? other.target_x : other.anchor.x);
+    const double a = ground.pitch(a_x);
+    const double b = ground.pitch(b_x);
+    const double pitch =
+        swinging ? (std::abs(a) > std::abs(b) ? a : b) : std::max(a, 0.0) + std::min({a, b, 0.0});
+    result[k] = {rig::degrees(pitch), ground.on_tread(a_x) || ground.on_tread(b_x) ? 1.0 : 0.0};
   }
-  const double steeper = std::abs(pitch[1]) > std::abs(pitch[0]) ? pitch[1] : pitch[0];
-  return {steeper, steeper};
+  return result;
 }
 
 // The paper's end position of the knee: the thigh's inclination when hip and knee put the heel on
@@ -860,10 +882,17 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
     d.previous[static_cast<std::size_t>(leg)] = l.angles;
     const std::array<double, 4>& c = d.commands[static_cast<std::size_t>(leg)];
     // A longer swing of the thigh swings the shank faster in proportion (see ControllerSet).
+    // (Only the set's own swing knee controller's share: a terrain word's file says its own
+    // velocities.)
     const double reference = w.controllers_->swing_knee_reference_sweep;
-    const double knee_scale = l.phase == Phase::Swing && reference > 0.0
-                                  ? std::abs(l.sweep_end - l.sweep_start) / reference
-                                  : 1.0;
+    double knee_scale = l.phase == Phase::Swing && reference > 0.0
+                            ? std::abs(l.sweep_end - l.sweep_start) / reference
+                            : 1.0;
+    if (l.phase == Phase::Swing && w.controllers_->has_terrain_words()) {
+      const double own = w.controllers_->own_degree(slot(LegPhase::Swing, Joint::Knee),
+                                                    d.metrics[static_cast<std::size_t>(leg)]);
+      if (own < 1.0) knee_scale = own * knee_scale + (1.0 - own);
+    }
     // The hip's command is a share of the sweep per second, the others degrees per second.
     const Joints target{JointPair{c[0], c[1] * per_degree} *
                             JointPair{sweep_scale(l.sweep_start, l.sweep_end), knee_scale},
@@ -927,8 +956,10 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
       // It lands only over its foothold's tread, no edge under its sole: elsewhere the ground is
       // an obstacle it keeps clear of.
       FootGround ground = ground_under(*w.terrain_, p);
+      const terrain::Terrain& t = *w.terrain_;
       const bool over_target =
-          w.terrain_->run_at(p.ball.x) == l.target_run && !(ground.sole_corners >= 0.0);
+          t.run_at(p.ball.x) == l.target_run && !(ground.sole_corners >= 0.0) &&
+          (t.run_at(p.heel.x) == l.target_run || t.run_at(l.target_x) != l.target_run);
       const bool arriving = (l.delta >= kLandingDelta && over_target) || w.state_.lead < 0 ||
                             w.state_.time - l.swing_start > kLongestSwing;
       const double knee_clearance = p.knee.y - w.terrain_->height(p.knee.x);
@@ -942,6 +973,13 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
         w.clear_ground(leg, kReflexSpeed * h, margin);
         p = leg_points(w, leg, w.state_.pelvis, l.angles);
         ground = ground_under(*w.terrain_, p);
+        // A foot the reflex could not keep off ground that is not its foothold (a stair's edge)
+        // does not land there: the knee folds as far as it must.
+        if (!over_target && !arriving && foot_depth(p, ground) >= 0.0) {
+          w.clear_ground(leg, w.limits_.maximum.knee, 0.0);
+          p = leg_points(w, leg, w.state_.pelvis, l.angles);
+          ground = ground_under(*w.terrain_, p);
+        }
       }
       const double heel_depth = ground.heel - p.heel.y;
       const double ball_depth = ground.ball - p.ball.y;

@@ -57,10 +57,15 @@ struct WalkerStages {
   // Height of a carrying leg's knee above the ground, from its points with the hip at the origin.
   static double knee_gap(const Walker& w, int leg, const rig::LegPoints& at_origin);
   // `ascent`: how far the set's ascent words hold (ControllerSet::ascent_weight).
+  // `landing_knee`: the knee angle the leg lands with (ControllerSet::landing_knee).
   static void update_metrics(Walker& w, int leg, const rig::LegPoints& points, double ascent,
-                             MetricValues& m);
+                             double landing_knee, MetricValues& m);
   static double knee_end_thigh(const Walker& w, int leg, rig::Point hip, rig::Point target);
-  static std::array<double, 2> leg_inclines(const Walker& w);
+  struct LegGround {
+    double incline;  // degrees (Metric::Incline)
+    double stairs;   // 1 or 0 (Metric::Stairs)
+  };
+  static std::array<LegGround, 2> leg_ground(const Walker& w);
 
   // A walker, or a crowd, whose controllers `backend` evaluates (one per character, null for
   // the set's own engines).

@@ -261,35 +261,26 @@ std::span<const Point> Terrain::corners_between(double x0, double x1) const {
 }
 
 Terrain::Foothold Terrain::foothold(double from_x, double wanted_x, double foot_length,
-                                    double margin) const {
+                                    double margin, double shortest) const {
   const std::size_t from_run = run_at(from_x);
   // The heels a run holds whole feet at, [low, high] (low > high: the run is too short).
   auto heels = [&](std::size_t r) {
     return std::pair{runs_[r].begin + margin, runs_[r].end - margin - foot_length};
   };
-  Foothold best{wanted_x, from_run};
-  double best_distance = std::numeric_limits<double>::infinity();
-  auto consider = [&](double heel, std::size_t r) {
-    const double distance = std::abs(heel - wanted_x);
-    if (distance < best_distance) {
-      best = {heel, r};
-      best_distance = distance;
-    }
-  };
-  // This run, ahead of the foot, and the next.
-  for (std::size_t r = from_run; r <= from_run + 1 && r < runs_.size(); ++r) {
-    auto [low, high] = heels(r);
-    if (r == from_run) low = std::max(low, from_x);
-    if (low <= high) {
-      consider(std::clamp(wanted_x, low, high), r);
-    } else if (r > from_run) {
-      // A tread shorter than the foot: the ball on it, toes clear of the riser ahead (going up)
-      // or the heel against the riser behind (going down).
-      const bool up = height(0.5 * (runs_[r].begin + runs_[r].end)) > height(from_x);
-      consider(up ? runs_[r].end - margin - foot_length : runs_[r].begin + margin, r);
-    }
-  }
-  return best;
+  // This run, ahead of the foot: the wanted place, or short of the edge.
+  const auto [low, high] = heels(from_run);
+  const double ahead = std::max(low, from_x);
+  if (ahead <= high && wanted_x <= high) return {std::max(wanted_x, ahead), from_run};
+  if (ahead <= high && high - from_x >= shortest) return {high, from_run};
+  // The next run.
+  const std::size_t next = from_run + 1;
+  if (next >= runs_.size()) return {std::max(wanted_x, ahead), from_run};
+  const auto [next_low, next_high] = heels(next);
+  if (next_low <= next_high) return {std::clamp(wanted_x, next_low, next_high), next};
+  // A tread shorter than the foot: the toes clear of the riser ahead going up, the heel against
+  // the riser behind going down.
+  const bool up = height(0.5 * (runs_[next].begin + runs_[next].end)) > height(from_x);
+  return {up ? runs_[next].end - margin - foot_length : runs_[next].begin + margin, next};
 }
 
 std::vector<Point> Terrain::profile(double x0, double x1) const {
