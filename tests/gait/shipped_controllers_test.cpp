@@ -77,20 +77,18 @@ TEST(ShippedControllers, FuzzyliteReadsEveryFileAndGivesFuzzygaitsOutputs) {
   for (const fs::path& dir : sets) {
     const gait::ControllerSet set = gait::ControllerSet::load(dir);
     ASSERT_EQ(set.controllers.size(), static_cast<std::size_t>(gait::kSlotCount)) << dir;
-    std::vector<const gait::Controller*> all;
-    for (const gait::Controller& c : set.controllers)
-      all.push_back(&c);
-    for (const gait::Controller& c : set.terrain_controllers)
-      all.push_back(&c);
-    in_sets += all.size();
-    for (const gait::Controller* controller : all) {
-      const gait::Controller& c = *controller;
+    auto name = [&](const gait::Controller& c) {
       const fs::path source = fs::weakly_canonical(c.source());
       EXPECT_TRUE(named.insert(source).second) << source << " named twice";
       EXPECT_TRUE(std::any_of(files.begin(), files.end(),
                               [&](const fs::path& f) { return fs::weakly_canonical(f) == source; }))
           << source << " is not among the shipped FLL files";
-    }
+    };
+    for (const gait::Controller& c : set.controllers)
+      name(c);
+    for (const gait::Controller& c : set.terrain_controllers)
+      name(c);
+    in_sets += set.controller_count();
   }
   const auto others =
       static_cast<std::size_t>(std::count_if(files.begin(), files.end(), [](const fs::path& f) {
