@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "fuzzygait/rig/rig.hpp"
@@ -34,6 +36,17 @@ class Terrain {
   // x does not increase (a vertical riser is two points kRiserWidth apart), or for a wall taller
   // than kTallestWall, naming the point.
   static Terrain polyline(std::vector<Point> points);
+
+  // Why polyline() would refuse `points`, or nothing when it takes them: the first point at
+  // fault and the reason, which reads after the point's name ("terrain point 3 is not finite",
+  // "... point 3: x must increase along the profile"). Lets a reader name the file's line.
+  struct Fault {
+    std::size_t point = 0;
+    std::string
+        reason;  // "is not finite", "lies more than ...", "x must increase ...", "a wall ..."
+    bool about_point = false;  // the reason continues the point's name ("is ..."), no colon
+  };
+  static std::optional<Fault> find_fault(std::span<const Point> points);
 
   // One piece of a sequence of ground, beginning where the piece before it ends.
   struct Piece {
