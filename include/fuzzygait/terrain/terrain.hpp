@@ -63,6 +63,10 @@ class Terrain {
   static Piece ramp_piece(double degrees, double length = 4.0);
   static Piece stairs_piece(double rise, double tread, int count);
   static Piece profile_piece(std::vector<Point> points);
+  // Throws std::invalid_argument naming the field of `piece` out of its range ("rise must be
+  // between 0.05 and 0.25 m ..., got 0.3"), or a profile's point at fault ("point 2: x must
+  // increase along the profile"), without naming the piece.
+  static void validate(const Piece& piece);
 
   // Level ground at height 0 up to x = start, then the pieces one after another, then level
   // ground at the height the last piece ends (a slope that comes last goes on as far as the ground

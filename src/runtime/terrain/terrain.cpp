@@ -145,6 +145,36 @@ Terrain::Piece Terrain::profile_piece(std::vector<Point> points) {
   return p;
 }
 
+void Terrain::validate(const Piece& piece) {
+  switch (piece.kind) {
+    case Piece::Kind::Flat:
+      within("", "length", piece.length, 0.01, 1e4, " m");
+      return;
+    case Piece::Kind::Ramp:
+      within("", "angle", piece.degrees, -25.0, 25.0, " deg");
+      within("", "length", piece.length, 0.01, 1e4, " m");
+      return;
+    case Piece::Kind::Stairs:
+      if (!(std::abs(piece.rise) >= 0.05 && std::abs(piece.rise) <= 0.25)) {
+        throw std::invalid_argument(
+            "rise must be between 0.05 and 0.25 m (-0.25 to -0.05 going down), got " +
+            common::number_text(piece.rise));
+      }
+      within("", "tread", piece.tread, 0.20, 0.40, " m");
+      within("", "count", piece.count, 1, 200, " steps");
+      return;
+    case Piece::Kind::Profile:
+      if (piece.points.size() < 2)
+        throw std::invalid_argument("a profile needs at least two points");
+      // Its own faults, named by its own points (once moved, a point's place is another).
+      if (const std::optional<Fault> fault = find_fault(piece.points)) {
+        throw std::invalid_argument(fault_text("point " + std::to_string(fault->point), *fault));
+      }
+      return;
+  }
+  throw std::invalid_argument("not a kind of piece");
+}
+
 Terrain Terrain::sequence(std::span<const Piece> pieces, double start) {
   within("terrain: ", "the start", start, -1e3, 1e3, " m");
   std::vector<Point> points{{-kMaxCoordinate, 0.0}, {start, 0.0}};
@@ -155,17 +185,18 @@ Terrain Terrain::sequence(std::span<const Piece> pieces, double start) {
   constexpr double kLandingLength = 1.0;  // m of level ground after stairs that something follows
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const Piece& piece = pieces[i];
-    const std::string where = piece_name(i, piece);
+    try {
+      validate(piece);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(piece_name(i, piece) + e.what());
+    }
     const bool last = i + 1 == pieces.size();
     const Point at = points.back();
     switch (piece.kind) {
       case Piece::Kind::Flat:
-        within(where, "length", piece.length, 0.01, 1e4, " m");
         if (!last) points.push_back({at.x + piece.length, at.y});
         break;
       case Piece::Kind::Ramp: {
-        within(where, "angle", piece.degrees, -25.0, 25.0, " deg");
-        within(where, "length", piece.length, 0.01, 1e4, " m");
         const double grade = std::tan(piece.degrees * (3.14159265358979323846 / 180.0));
         if (!last) {
           points.push_back({at.x + piece.length, at.y + grade * piece.length});
@@ -181,14 +212,6 @@ Terrain Terrain::sequence(std::span<const Piece> pieces, double start) {
         break;
       }
       case Piece::Kind::Stairs: {
-        if (!(std::abs(piece.rise) >= 0.05 && std::abs(piece.rise) <= 0.25)) {
-          throw std::invalid_argument(where +
-                                      "rise must be between 0.05 and 0.25 m (-0.25 to "
-                                      "-0.05 going down), got " +
-                                      common::number_text(piece.rise));
-        }
-        within(where, "tread", piece.tread, 0.20, 0.40, " m");
-        within(where, "count", piece.count, 1, 200, " steps");
         // The first riser rises from where the piece begins (the last point already).
         Point p = at;
         for (int step = 0; step < piece.count; ++step) {
@@ -203,14 +226,6 @@ Terrain Terrain::sequence(std::span<const Piece> pieces, double start) {
         break;
       }
       case Piece::Kind::Profile: {
-        if (piece.points.size() < 2) {
-          throw std::invalid_argument(where + "a profile needs at least two points");
-        }
-        // Its own faults first, named by its own points (a shift could hide a NaN's place).
-        if (const std::optional<Fault> fault = find_fault(piece.points)) {
-          throw std::invalid_argument(
-              fault_text(where + "point " + std::to_string(fault->point), *fault));
-        }
         const Point first = piece.points.front();
         for (std::size_t k = 1; k < piece.points.size(); ++k) {
           points.push_back(
@@ -220,8 +235,6 @@ Terrain Terrain::sequence(std::span<const Piece> pieces, double start) {
         }
         break;
       }
-      default:
-        throw std::invalid_argument(where + "not a kind of piece");
     }
     owner.resize(points.size(), i);
     owner_point.resize(points.size(), 0);
