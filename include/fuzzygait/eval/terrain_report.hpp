@@ -41,7 +41,8 @@ struct EdgeClearance {
   bool nosing = false;  // beside a riser; else a ramp's crest
   // The toe tip's and the heel's smallest height above the corner while within kEdgeWindow of it
   // in x over the ground beside it at its height (the tread's side of a nosing, both sides of a
-  // crest), in the frames as sampled; NaN if never there.
+  // crest), over the swing's frames as sampled (toe off to the frame before the strike); NaN if
+  // never there.
   double tip = 0.0;
   double heel = 0.0;
   // The smallest distance from the corner to the foot's sole outline (heel to ball to toe tip)

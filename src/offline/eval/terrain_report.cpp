@@ -421,12 +421,13 @@ TerrainReport evaluate_terrain(const Motion& m, const Terrain& terrain) {
       EdgeClearance e;
       e.corner = corners[c].at;
       e.nosing = corners[c].nosing;
-      e.tip = clearance_over(m, toe_off, g, corners[c],
+      // Over the swing's frames: toe off to the frame before the strike.
+      e.tip = clearance_over(m, toe_off, g - 1, corners[c],
                              [s](const Frame& fr) { return fr.points[s].tip; });
-      e.heel = clearance_over(m, toe_off, g, corners[c],
+      e.heel = clearance_over(m, toe_off, g - 1, corners[c],
                               [s](const Frame& fr) { return fr.points[s].heel; });
       e.foot = kNaN;
-      for (std::size_t i = toe_off; i <= g; ++i) {
+      for (std::size_t i = toe_off; i < g; ++i) {
         if (finite[i]) keep_lower(e.foot, outline_distance(m.frames[i].points[s], e.corner));
       }
       keep_lower(step.edge_tip, e.tip);
