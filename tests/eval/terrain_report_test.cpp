@@ -318,6 +318,23 @@ TEST(TerrainReport, SwingsClearEachNosingByTheirPlannedHeight) {
   }
 }
 
+TEST(TerrainReport, AToeBelowANosingButBeforeItsRiserIsNotOverIt) {
+  // The heel 0.101 m past a riser puts the toe tip 32 mm before the next: lifting, it rises
+  // within 5 cm of the nosing above, but in front of the riser, over the lower tread.
+  const Terrain stairs = Terrain::stairs(0.17, 0.40, 8);
+  Plan plan = stair_plan(stairs);
+  plan.heel_x = [](int n) { return 1.0 + 0.4 * (n - 1) + 0.001 + 0.101; };
+  const TerrainReport r = evaluate_terrain(planned_walk(plan), stairs);
+  for (int n = 0; n <= 6; ++n) {
+    const TerrainStep& s = r.steps[static_cast<std::size_t>(n)];
+    EXPECT_NEAR(s.edge_tip, 0.04, 1e-9) << n;
+    EXPECT_NEAR(s.edge_heel, 0.04, 1e-9) << n;
+    // The sole outline passes that nosing 32 mm away in x, nearer than 40 mm as sampled.
+    EXPECT_GT(s.edge_foot, 0.032) << n;
+    EXPECT_LT(s.edge_foot, 0.039) << n;
+  }
+}
+
 TEST(TerrainReport, StairsDownAreFoundAsDescent) {
   const Terrain stairs = Terrain::stairs(-0.17, 0.40, 8);
   const TerrainReport r = evaluate_terrain(planned_walk(stair_plan(stairs)), stairs);
