@@ -658,7 +658,7 @@ std::string to_text(const TerrainReport& r) {
     const PointContact& c = r.points[p];
     std::snprintf(line, sizeof line, "  %-31s %21.2f %22.2f%s\n", kContactPoints[p],
                   c.max_slip * 1e3, c.max_penetration * 1e3,
-                  c.max_penetration > 0.0
+                  c.max_penetration >= 0.000005  // shows as 0.01 mm or more
                       ? (" (at " + figure(c.penetration_time, 1.0, 3) + " s)").c_str()
                       : "");
     out += line;
