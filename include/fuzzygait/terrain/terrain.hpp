@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "fuzzygait/rig/rig.hpp"
@@ -35,6 +37,17 @@ class Terrain {
   // than kTallestWall, naming the point.
   static Terrain polyline(std::vector<Point> points);
 
+  // Why polyline() would refuse `points`, or nothing when it takes them: the first point at
+  // fault and the reason, which reads after the point's name ("terrain point 3 is not finite",
+  // "... point 3: x must increase along the profile"). Lets a reader name the file's line.
+  struct Fault {
+    std::size_t point = 0;
+    std::string
+        reason;  // "is not finite", "lies more than ...", "x must increase ...", "a wall ..."
+    bool about_point = false;  // the reason continues the point's name ("is ..."), no colon
+  };
+  static std::optional<Fault> find_fault(std::span<const Point> points);
+
   // One piece of a sequence of ground, beginning where the piece before it ends.
   struct Piece {
     enum class Kind { Flat, Ramp, Stairs, Profile };
@@ -50,6 +63,10 @@ class Terrain {
   static Piece ramp_piece(double degrees, double length = 4.0);
   static Piece stairs_piece(double rise, double tread, int count);
   static Piece profile_piece(std::vector<Point> points);
+  // Throws std::invalid_argument naming the field of `piece` out of its range ("rise must be
+  // between 0.05 and 0.25 m ..., got 0.3"), or a profile's point at fault ("point 2: x must
+  // increase along the profile"), without naming the piece.
+  static void validate(const Piece& piece);
 
   // Level ground at height 0 up to x = start, then the pieces one after another, then level
   // ground at the height the last piece ends (a slope that comes last goes on as far as the ground

@@ -4,7 +4,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -64,19 +66,17 @@ Terrain Terrain::flat() {
   return Terrain({{-kMaxCoordinate, 0.0}, {kMaxCoordinate, 0.0}});
 }
 
-Terrain Terrain::polyline(std::vector<Point> points) {
-  if (points.size() < 2) throw std::invalid_argument("terrain needs at least two points");
+std::optional<Terrain::Fault> Terrain::find_fault(std::span<const Point> points) {
+  if (points.size() < 2) return Fault{0, "terrain needs at least two points", false};
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y)) {
-      throw std::invalid_argument("terrain point " + std::to_string(i) + " is not finite");
+      return Fault{i, "is not finite", true};
     }
     if (std::abs(points[i].x) > kMaxCoordinate || std::abs(points[i].y) > kMaxCoordinate) {
-      throw std::invalid_argument("terrain point " + std::to_string(i) +
-                                  " lies more than 1000 km from the origin");
+      return Fault{i, "lies more than 1000 km from the origin", true};
     }
     if (i > 0 && !(points[i].x > points[i - 1].x)) {
-      throw std::invalid_argument("terrain point " + std::to_string(i) +
-                                  ": x must increase along the profile");
+      return Fault{i, "x must increase along the profile", false};
     }
   }
   // Walls: consecutive segments too steep to stand on, and how high they climb or drop together.
@@ -87,12 +87,32 @@ Terrain Terrain::polyline(std::vector<Point> points) {
     const bool steep = std::atan2(std::abs(dy), dx) > kSteepestFoothold;
     wall = steep && (wall == 0.0 || (wall > 0.0) == (dy > 0.0)) ? wall + dy : (steep ? dy : 0.0);
     if (std::abs(wall) > kTallestWall) {
-      throw std::invalid_argument("terrain point " + std::to_string(i + 1) + ": a wall " +
-                                  common::number_text(std::abs(wall), 3) +
-                                  " m high at x = " + common::number_text(points[i + 1].x, 3) +
-                                  " is taller than a leg climbs in a step (" +
-                                  common::number_text(kTallestWall) + " m)");
+      return Fault{i + 1,
+                   "a wall " + common::number_text(std::abs(wall), 3) +
+                       " m high at x = " + common::number_text(points[i + 1].x, 3) +
+                       " is taller than a leg climbs in a step (" +
+                       common::number_text(kTallestWall) + " m)",
+                   false};
     }
+  }
+  return std::nullopt;
+}
+
+namespace {
+
+// "terrain point 3 is not finite", "terrain point 3: x must increase ..."; `subject` names the
+// point.
+std::string fault_text(const std::string& subject, const Terrain::Fault& fault) {
+  return subject + (fault.about_point ? " " : ": ") + fault.reason;
+}
+
+}  // namespace
+
+Terrain Terrain::polyline(std::vector<Point> points) {
+  if (points.size() < 2) throw std::invalid_argument("terrain needs at least two points");
+  if (const std::optional<Fault> fault = find_fault(points)) {
+    throw std::invalid_argument(
+        fault_text("terrain point " + std::to_string(fault->point), *fault));
   }
   return Terrain(std::move(points));
 }
@@ -102,8 +122,9 @@ namespace {
 // "terrain piece N (KIND): " for the errors of a sequence.
 std::string piece_name(std::size_t index, const Terrain::Piece& p) {
   const char* kinds[] = {"flat", "ramp", "stairs", "profile"};
-  return "terrain piece " + std::to_string(index + 1) + " (" + kinds[static_cast<int>(p.kind)] +
-         "): ";
+  const auto kind = static_cast<std::size_t>(p.kind);
+  return "terrain piece " + std::to_string(index + 1) + " (" +
+         (kind < std::size(kinds) ? kinds[kind] : "unknown kind") + "): ";
 }
 
 void within(const std::string& where, const char* field, double value, double low, double high,
@@ -148,44 +169,75 @@ Terrain::Piece Terrain::profile_piece(std::vector<Point> points) {
   return p;
 }
 
+void Terrain::validate(const Piece& piece) {
+  switch (piece.kind) {
+    case Piece::Kind::Flat:
+      within("", "length", piece.length, 0.01, 1e4, " m");
+      return;
+    case Piece::Kind::Ramp:
+      within("", "angle", piece.degrees, -25.0, 25.0, " deg");
+      within("", "length", piece.length, 0.01, 1e4, " m");
+      return;
+    case Piece::Kind::Stairs:
+      if (!(std::abs(piece.rise) >= 0.05 && std::abs(piece.rise) <= 0.25)) {
+        throw std::invalid_argument(
+            "rise must be between 0.05 and 0.25 m (-0.25 to -0.05 going down), got " +
+            common::number_text(piece.rise));
+      }
+      within("", "tread", piece.tread, 0.20, 0.40, " m");
+      within("", "count", piece.count, 1, 200, " steps");
+      return;
+    case Piece::Kind::Profile:
+      if (piece.points.size() < 2)
+        throw std::invalid_argument("a profile needs at least two points");
+      // Its own faults, named by its own points (once moved, a point's place is another).
+      if (const std::optional<Fault> fault = find_fault(piece.points)) {
+        throw std::invalid_argument(fault_text("point " + std::to_string(fault->point), *fault));
+      }
+      return;
+  }
+  throw std::invalid_argument("not a kind of piece");
+}
+
 Terrain Terrain::sequence(std::span<const Piece> pieces, double start) {
   within("terrain: ", "the start", start, -1e3, 1e3, " m");
   std::vector<Point> points{{-kMaxCoordinate, 0.0}, {start, 0.0}};
+  // Which piece each point comes from (pieces.size() for the ground around them), and for a
+  // profile's points their index in the piece: a fault is named by its piece.
+  std::vector<std::size_t> owner{pieces.size(), pieces.size()};
+  std::vector<std::size_t> owner_point{0, 0};
   constexpr double kLandingLength = 1.0;  // m of level ground after stairs that something follows
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const Piece& piece = pieces[i];
-    const std::string where = piece_name(i, piece);
+    try {
+      validate(piece);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(piece_name(i, piece) + e.what());
+    }
     const bool last = i + 1 == pieces.size();
     const Point at = points.back();
     switch (piece.kind) {
       case Piece::Kind::Flat:
-        within(where, "length", piece.length, 0.01, 1e4, " m");
         if (!last) points.push_back({at.x + piece.length, at.y});
         break;
       case Piece::Kind::Ramp: {
-        within(where, "angle", piece.degrees, -25.0, 25.0, " deg");
-        within(where, "length", piece.length, 0.01, 1e4, " m");
         const double grade = std::tan(piece.degrees * (3.14159265358979323846 / 180.0));
-        // The last ramp goes on as far as the ground reaches.
-        double length = piece.length;
-        if (last) {
-          length = kMaxCoordinate - at.x;
-          if (grade != 0.0)
-            length = std::min(length, (kMaxCoordinate - std::abs(at.y)) / std::abs(grade));
+        if (!last) {
+          points.push_back({at.x + piece.length, at.y + grade * piece.length});
+        } else if (grade != 0.0) {
+          // The last ramp goes on as far as the ground reaches: to x = kMaxCoordinate, or where
+          // its height does; the end stays within the ground's extent despite rounding.
+          const double end_x =
+              std::min(kMaxCoordinate, at.x + (kMaxCoordinate - std::abs(at.y)) / std::abs(grade));
+          const double end_y =
+              std::clamp(at.y + grade * (end_x - at.x), -kMaxCoordinate, kMaxCoordinate);
+          if (end_x > at.x) points.push_back({end_x, end_y});
         }
-        if (piece.degrees != 0.0 || !last) points.push_back({at.x + length, at.y + grade * length});
         break;
       }
       case Piece::Kind::Stairs: {
-        if (!(std::abs(piece.rise) >= 0.05 && std::abs(piece.rise) <= 0.25)) {
-          throw std::invalid_argument(where +
-                                      "rise must be between 0.05 and 0.25 m (-0.25 to "
-                                      "-0.05 going down), got " +
-                                      common::number_text(piece.rise));
-        }
-        within(where, "tread", piece.tread, 0.20, 0.40, " m");
-        within(where, "count", piece.count, 1, 200, " steps");
-        Point p = at;  // the foot of the first riser: the last point already
+        // The first riser rises from where the piece begins (the last point already).
+        Point p = at;
         for (int step = 0; step < piece.count; ++step) {
           if (step > 0) {
             p.x += piece.tread - kRiserWidth;
@@ -198,24 +250,37 @@ Terrain Terrain::sequence(std::span<const Piece> pieces, double start) {
         break;
       }
       case Piece::Kind::Profile: {
-        if (piece.points.size() < 2) {
-          throw std::invalid_argument(where + "a profile needs at least two points");
-        }
         const Point first = piece.points.front();
         for (std::size_t k = 1; k < piece.points.size(); ++k) {
           points.push_back(
               {at.x + (piece.points[k].x - first.x), at.y + (piece.points[k].y - first.y)});
+          owner.push_back(i);
+          owner_point.push_back(k);
         }
         break;
       }
     }
+    owner.resize(points.size(), i);
+    owner_point.resize(points.size(), 0);
   }
-  if (points.back().x < kMaxCoordinate) points.push_back({kMaxCoordinate, points.back().y});
-  try {
-    return polyline(std::move(points));
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("terrain: " + std::string(e.what()));
+  if (points.back().x < kMaxCoordinate) {
+    points.push_back({kMaxCoordinate, points.back().y});
+    owner.push_back(pieces.size());
+    owner_point.push_back(0);
   }
+  if (const std::optional<Fault> fault = find_fault(points)) {
+    const std::size_t piece = owner[fault->point];
+    if (piece == pieces.size()) {
+      throw std::invalid_argument(
+          fault_text("terrain: point " + std::to_string(fault->point), *fault));
+    }
+    const std::string where = piece_name(piece, pieces[piece]);
+    const bool profile = pieces[piece].kind == Piece::Kind::Profile;
+    throw std::invalid_argument(
+        profile ? fault_text(where + "point " + std::to_string(owner_point[fault->point]), *fault)
+                : where + (fault->about_point ? "a point " : "") + fault->reason);
+  }
+  return Terrain(std::move(points));
 }
 
 Terrain Terrain::ramp(double degrees, double start) {
