@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "commands.hpp"
@@ -99,6 +100,12 @@ void add_mocap_command(CLI::App& app) {
                                   common::number_text(*o->unit));
     }
     check_output_prefix(o->prefix, "-o");
+    // PREFIX.bvh is written: it must not be the clip (`mocap walk.bvh -o walk`).
+    std::error_code same_error;
+    if (std::filesystem::equivalent(o->clip, o->prefix + ".bvh", same_error)) {
+      throw std::invalid_argument("-o: '" + o->prefix + ".bvh' would overwrite the clip '" +
+                                  o->clip + "'; choose another prefix");
+    }
     // Everything that can be refused is refused before any file is written.
     const eval::Normative reference = io::load_normative(o->reference);
     io::ClipOptions options;

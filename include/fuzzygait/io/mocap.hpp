@@ -97,13 +97,13 @@ BvhClip read_bvh(std::string_view text, std::string_view source);
 // The same for a file; `path` names it in errors.
 BvhClip read_bvh_file(const std::filesystem::path& path);
 
-// Which joints make the legs. Empty names are looked up by the built-in aliases.
+// Which joints make a leg, by name.
 struct LegJoints {
   std::string hip;    // the hip joint centre (the thigh's first joint)
   std::string knee;   // the knee
   std::string ankle;  // the ankle
-  // The toe base (MTP joint); its first child marks the tip of the toes. Empty in a mapping
-  // file for a skeleton without toes: the ankle's End Site then stands for the toe base.
+  // The toe base (MTP joint); its first child marks the tip of the toes (no toe angle without
+  // one). Empty: the ankle's first child stands for it (an End Site on a foot without toes).
   std::string toe;
 };
 struct LegMapping {
@@ -114,8 +114,8 @@ struct LegMapping {
 
 // The built-in names: root "Hips" (else the file's ROOT); per side, with the prefixes "Left",
 // "L" and "l" (and "Right", "R", "r"), the first of UpLeg, Hip, Thigh, femur; Leg, Knee, Shin,
-// tibia; Foot, Ankle, foot; ToeBase, Toe, toes that the skeleton has: CMU, MotionBuilder,
-// Mixamo-style and ASF-style names.
+// tibia; Foot, Ankle, foot; ToeBase, Toe, toes that the skeleton has (CMU, MotionBuilder and
+// ASF-style names), the toe base else the ankle's first child.
 // A mapping file is a JSON object:
 //   {"root": "pelvis",
 //    "left":  {"hip": "thigh_l", "knee": "calf_l", "ankle": "foot_l", "toe": "ball_l"},

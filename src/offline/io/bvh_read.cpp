@@ -210,6 +210,12 @@ class Parser {
       in_.fail(keyword.line, "expected a joint name after " + std::string(keyword.text) +
                                  " found " + (brace ? "'{'" : "the end of the line"));
     }
+    for (char c : name) {
+      const auto u = static_cast<unsigned char>(c);
+      if (u < 0x20 || u == 0x7f) {
+        in_.expected("a joint name (printable characters)", {name, keyword.line});
+      }
+    }
     if (const auto [known, added] = lines_.emplace(name, keyword.line); !added) {
       in_.fail(keyword.line, "expected a joint name not used before found '" + name +
                                  "' (also on line " + std::to_string(known->second) + ")");
@@ -324,9 +330,9 @@ class Parser {
     }
     if (!in_.at_end()) {
       const Token extra = in_.next();
-      in_.expected(
-          "the end of the file after " + std::to_string(count) + " frames (the 'Frames:' count)",
-          extra);
+      in_.expected("the end of the file after " + std::to_string(count) +
+                       (count == 1 ? " frame" : " frames") + " (the 'Frames:' count)",
+                   extra);
     }
   }
 

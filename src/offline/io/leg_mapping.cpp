@@ -53,14 +53,7 @@ bool is_below(const BvhClip& bvh, int joint, int ancestor) {
   return false;
 }
 
-// The ankle's first End Site child, or -1.
-int end_site_of(const BvhClip& bvh, int joint) {
-  for (std::size_t i = 0; i < bvh.joints.size(); ++i) {
-    if (bvh.joints[i].parent == joint && bvh.joints[i].end_site) return static_cast<int>(i);
-  }
-  return -1;
-}
-
+// The joint's first child (a joint or an End Site), or -1.
 int first_child(const BvhClip& bvh, int joint) {
   for (std::size_t i = 0; i < bvh.joints.size(); ++i) {
     if (bvh.joints[i].parent == joint) return static_cast<int>(i);
@@ -183,18 +176,19 @@ SkeletonLegs find_legs(const BvhClip& bvh, std::string_view source, const LegMap
         }
       }
       if (*joints[part] >= 0) continue;
-      if (part == 3) {  // no toes: the ankle's End Site stands for the toe base
-        chain.toe = end_site_of(bvh, chain.ankle);
+      if (part == 3) {  // no toe joint named or found: the ankle's first child stands for it
+        chain.toe = first_child(bvh, chain.ankle);
         if (chain.toe >= 0) {
-          found.notes.push_back("no " + side_name + " toe joint: the End Site of the ankle " +
-                                quoted(bvh, chain.ankle) +
-                                " stands for the toe base, and the toe angle is 0");
+          found.notes.push_back("no " + side_name + " toe joint " +
+                                (mapped ? std::string("named") : std::string("found")) + ": " +
+                                quoted(bvh, chain.toe) + ", the first child of the ankle " +
+                                quoted(bvh, chain.ankle) + ", stands for the toe base");
           continue;
         }
         if (mapped) {
           throw MocapError(map_source, 0,
                            field + ": none given and the ankle " + quoted(bvh, chain.ankle) +
-                               " has no End Site to stand for it in " + clip);
+                               " has no child to stand for it in " + clip);
         }
       }
       std::string tried;
