@@ -195,17 +195,18 @@ struct CapturedClip {
   GaitEvents events;
   // Left cycles within ClipOptions' duration range, in order: (strike frame, next strike frame).
   std::vector<std::array<std::size_t, 2>> cycles;
-  double cadence = 0.0;      // steps/min, from successive strikes of alternate feet < 1 s apart
-  double step_length = 0.0;  // m, ankle to ankle along f at each heel strike, mean
-  double speed = 0.0;        // m/s, root along f from the first heel strike to the last
+  // Each 0 when the clip has no such strikes.
+  double cadence = 0.0;            // steps/min, from strikes of alternate feet 0 to 1 s apart
+  double step_length = 0.0;        // m, ankle to ankle along f at each heel strike, mean
+  double speed = 0.0;              // m/s, root along f from the first heel strike to the last
   std::vector<std::string> notes;  // estimates and doubts, one sentence each
 };
 
 // Analyses a clip read by read_bvh. `source` names it in errors. Throws MocapError naming the
 // source (and the mapping's file and the joint) for a leg joint not found or not below the one
-// before it, legs of zero length, an option out of range, fewer than 5 frames left after
+// before it, legs of zero length, an option out of range, fewer than 2 frames left after
 // skipping, a root that does not move horizontally, a skeleton whose up axis cannot be told,
-// positions beyond 1000 km.
+// positions beyond 100 km, ground rising more than 0.5 m per metre.
 CapturedClip analyse_clip(const BvhClip& bvh, std::string_view source,
                           const ClipOptions& options = {});
 // read_bvh_file, then analyse_clip.

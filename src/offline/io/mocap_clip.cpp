@@ -35,6 +35,11 @@ constexpr double kTypicalHipToAnkle = 0.80;  // m
 constexpr double kShortTravel = 0.2;  // m
 constexpr int kSpeedHalfWindow = 2;   // frames each side of a central difference
 constexpr std::size_t kFewestStillSamples = 10;
+// Positions farther out are a wrong unit or a broken file; this keeps a clip's whole path, and
+// its ground, within terrain::Terrain::kMaxCoordinate.
+constexpr double kFarthest = 1e5;  // m
+// A ground line steeper than this is no floor a walk crosses.
+constexpr double kSteepestGround = 0.5;  // rise per metre, 27 deg
 
 Vec3 operator-(const Vec3& a, const Vec3& b) {
   return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
@@ -320,9 +325,9 @@ CapturedClip analyse_clip(const BvhClip& bvh, std::string_view source, const Cli
       for (const Vec3* p : {&f.root, &f.legs[s].hip, &f.legs[s].knee, &f.legs[s].ankle,
                             &f.legs[s].toe, &f.legs[s].tip}) {
         for (double v : *p) {
-          if (!(std::abs(v) <= terrain::Terrain::kMaxCoordinate)) {
+          if (!(std::abs(v) <= kFarthest)) {
             throw MocapError(where, 0,
-                             "expected positions within 1000 km of the origin found " +
+                             "expected positions within 100 km of the origin found " +
                                  number_text(v) + " m in frame " +
                                  std::to_string(clip.skipped_frames + i + 1) + " (at " +
                                  number_text(unit) + " m per unit)");
@@ -457,7 +462,7 @@ CapturedClip analyse_clip(const BvhClip& bvh, std::string_view source, const Cli
     step_lengths.push_back(dot(frames[i].legs[s].ankle - frames[i].legs[1 - s].ankle, f));
     if (k + 1 < strikes.size() && strikes[k + 1].second != s) {
       const double gap = static_cast<double>(strikes[k + 1].first - i) * dt;
-      if (gap < 1.0) step_times.push_back(gap);
+      if (gap > 0.0 && gap < 1.0) step_times.push_back(gap);  // (both feet at once: no step)
     }
   }
   clip.cadence = step_times.empty() ? 0.0 : 60.0 / mean_of(step_times);
@@ -526,6 +531,11 @@ CapturedClip analyse_clip(const BvhClip& bvh, std::string_view source, const Cli
   // toe bases' ground at x = 0.
   const double x0 = dot(frames.front().root, f);
   const Line& floor = ground[1];
+  if (!(std::abs(floor.slope) <= kSteepestGround)) {
+    throw MocapError(where, 0,
+                     "expected the toe bases' ground to be a floor found it rising " +
+                         number_text(floor.slope) + " m per metre walked");
+  }
   const double y0 = floor.at(x0);
   eval::Motion& motion = clip.motion;
   motion.fps = 1.0 / dt;
