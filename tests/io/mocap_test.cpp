@@ -963,6 +963,21 @@ TEST(MocapCommand, WritesAWalksFilesAndEvalMeasuresThemAsThePythonToolDoes) {
   }
 }
 
+TEST(MocapCommand, SameClipSameBytes) {
+  const std::filesystem::path clip = kClips / "05_01.bvh";
+  const std::filesystem::path a = scratch("same_a");
+  const std::filesystem::path b = scratch("same_b");
+  for (const auto& prefix : {a, b}) {
+    const auto run =
+        test::run_program("mocap " + shell_quoted(clip) + " -o " + shell_quoted(prefix));
+    ASSERT_EQ(run.status, 0) << run.output;
+  }
+  for (const char* ext : {".csv", ".terrain.csv", ".bvh", ".svg", ".poses.svg"}) {
+    EXPECT_EQ(test::read_text(a.string() + ext), test::read_text(b.string() + ext)) << ext;
+    EXPECT_FALSE(test::read_text(a.string() + ext).empty()) << ext;
+  }
+}
+
 TEST(MocapCommand, OptionsTakeEffect) {
   SyntheticOptions o;
   o.up = io::UpAxis::Z;

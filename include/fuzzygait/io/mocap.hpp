@@ -120,8 +120,9 @@ struct LegMapping {
 //   {"root": "pelvis",
 //    "left":  {"hip": "thigh_l", "knee": "calf_l", "ankle": "foot_l", "toe": "ball_l"},
 //    "right": {"hip": "thigh_r", "knee": "calf_r", "ankle": "foot_r", "toe": "ball_r"}}
-// "root" and "toe" may be left out. Throws MocapError naming the file, line and field for
-// anything else (an unknown key, a name that is not a non-empty string).
+// "root" and "toe" may be left out. Throws std::invalid_argument naming the file and line for
+// anything else: text that is not JSON (its column too), an unknown key, a missing field, a
+// name that is not a non-empty string (a MocapError naming the field).
 LegMapping read_leg_mapping(std::string_view json, std::string_view source);
 LegMapping read_leg_mapping_file(const std::filesystem::path& path);
 

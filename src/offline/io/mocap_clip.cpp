@@ -40,6 +40,8 @@ constexpr std::size_t kFewestStillSamples = 10;
 constexpr double kFarthest = 1e5;  // m
 // A ground line steeper than this is no floor a walk crosses.
 constexpr double kSteepestGround = 0.5;  // rise per metre, 27 deg
+// The rig's least ankle height (rig::validate); a skeleton's foot dropping less gets Winter's.
+constexpr double kLowestAnkle = 0.005;  // m
 
 Vec3 operator-(const Vec3& a, const Vec3& b) {
   return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
@@ -231,6 +233,218 @@ bool is_calibration_pose(const BvhClip& bvh, std::span<const double> frame) {
   return static_cast<double>(zeros) > 0.8 * static_cast<double>(rotations);
 }
 
+// The guess of the unit: the candidate that makes the rest leg (hip to ankle, file units)
+// closest to a typical one, the first of equals.
+double guess_unit(double rest_leg) {
+  double best = kUnits[0];
+  for (double unit : kUnits) {
+    if (std::abs(std::log(rest_leg * unit / kTypicalHipToAnkle)) <
+        std::abs(std::log(rest_leg * best / kTypicalHipToAnkle))) {
+      best = unit;
+    }
+  }
+  return best;
+}
+
+// Of +Y and +Z, the axis along which the hips stand above the ankles over the clip.
+UpAxis detect_up(const std::vector<FramePositions>& frames, const std::string& where) {
+  Vec3 rise{};
+  for (const FramePositions& f : frames) {
+    rise = rise + 0.5 * ((f.legs[0].hip + f.legs[1].hip) - (f.legs[0].ankle + f.legs[1].ankle));
+  }
+  if (!(std::max(rise[1], rise[2]) > 0.5 * norm(rise))) {
+    throw MocapError(where, 0,
+                     "cannot tell the up axis: the hips do not stand above the ankles along +Y "
+                     "or +Z; give it (--up y or --up z)");
+  }
+  return rise[1] >= rise[2] ? UpAxis::Y : UpAxis::Z;
+}
+
+// The sagittal plane: up u and walking direction f, unit vectors in the file's axes.
+struct Sagittal {
+  Vec3 up;
+  Vec3 forward;
+  Vec3 horizontal(const Vec3& v) const { return v - dot(v, up) * up; }
+};
+
+// The ankles (part 0) and toe bases (part 1) of both feet over the frames, and their speeds.
+class FootTracks {
+ public:
+  FootTracks(const std::vector<FramePositions>& frames, const Sagittal& plane, double dt)
+      : frames_(frames), plane_(plane), dt_(dt) {}
+  std::size_t size() const { return frames_.size(); }
+  const Vec3& at(std::size_t i, std::size_t side, int part) const {
+    const LegPositions& p = frames_[i].legs[side];
+    return part == 0 ? p.ankle : p.toe;
+  }
+  // m/s by central differences over 5 frames (fewer at the ends); `flat`: horizontal only.
+  double speed(std::size_t i, std::size_t side, int part, bool flat) const {
+    const std::size_t a = i >= kSpeedHalfWindow ? i - kSpeedHalfWindow : 0;
+    const std::size_t b = std::min(frames_.size() - 1, i + kSpeedHalfWindow);
+    const Vec3 d = at(b, side, part) - at(a, side, part);
+    return norm(flat ? plane_.horizontal(d) : d) / (static_cast<double>(b - a) * dt_);
+  }
+
+ private:
+  const std::vector<FramePositions>& frames_;
+  const Sagittal& plane_;
+  double dt_;
+};
+
+// Ground lines of the ankles and the toe bases, both feet pooled.
+std::array<Line, 2> fit_ground(const FootTracks& feet, const Sagittal& plane, double ground_speed) {
+  std::array<Line, 2> ground;
+  for (int part = 0; part < 2; ++part) {
+    std::vector<std::array<double, 3>> samples;
+    samples.reserve(2 * feet.size());
+    for (std::size_t i = 0; i < feet.size(); ++i) {
+      for (std::size_t s = 0; s < 2; ++s) {
+        const Vec3& p = feet.at(i, s, part);
+        samples.push_back({dot(p, plane.forward), dot(p, plane.up), feet.speed(i, s, part, true)});
+      }
+    }
+    ground[static_cast<std::size_t>(part)] = ground_line(samples, ground_speed);
+  }
+  return ground;
+}
+
+// Whether a foot bears on the ground, frame by frame, debounced.
+std::vector<bool> foot_contact(const FootTracks& feet, std::size_t side,
+                               const std::array<Line, 2>& ground, const Sagittal& plane,
+                               const ClipOptions& o, double dt) {
+  std::vector<bool> on(feet.size());
+  for (std::size_t i = 0; i < feet.size(); ++i) {
+    bool down = false;
+    for (int part = 0; part < 2; ++part) {
+      const Vec3& q = feet.at(i, side, part);
+      const double height =
+          dot(q, plane.up) - ground[static_cast<std::size_t>(part)].at(dot(q, plane.forward));
+      down = down ||
+             (height < o.contact_height && feet.speed(i, side, part, true) < o.contact_speed) ||
+             feet.speed(i, side, part, false) < o.still_speed;
+    }
+    on[i] = down;
+  }
+  return debounce(on, static_cast<std::size_t>(std::max(1.0, std::nearbyint(o.min_run / dt))));
+}
+
+// The four angles of a leg, radians; ankle and toe relative to `rest`'s.
+rig::LegAngles leg_angles(const LegPositions& p, const LegPositions& rest, bool has_tip,
+                          const Sagittal& plane) {
+  const Vec3 thigh = p.knee - p.hip;
+  const Vec3 shank = p.ankle - p.knee;
+  const Vec3 foot = p.toe - p.ankle;
+  rig::LegAngles a;
+  a.hip = std::atan2(dot(thigh, plane.forward), -dot(thigh, plane.up));
+  a.knee = angle_between(thigh, shank);
+  a.ankle =
+      angle_between(shank, foot) - angle_between(rest.ankle - rest.knee, rest.toe - rest.ankle);
+  a.toe = has_tip ? angle_between(foot, p.tip - p.toe) -
+                        angle_between(rest.toe - rest.ankle, rest.tip - rest.toe)
+                  : 0.0;
+  return a;
+}
+
+// Heel strikes and toe offs, left cycles, cadence, step length and speed.
+void measure_gait(CapturedClip& clip, const std::array<std::vector<bool>, 2>& contact,
+                  const std::vector<FramePositions>& frames, const Sagittal& plane, double dt,
+                  const ClipOptions& o) {
+  std::vector<std::pair<std::size_t, std::size_t>> strikes;  // (frame, side), in order
+  for (std::size_t s = 0; s < 2; ++s) {
+    for (std::size_t i = 1; i < frames.size(); ++i) {
+      if (contact[s][i] && !contact[s][i - 1]) {
+        clip.events.heel_strikes[s].push_back(i);
+        strikes.emplace_back(i, s);
+      }
+      if (!contact[s][i] && contact[s][i - 1]) clip.events.toe_offs[s].push_back(i);
+    }
+  }
+  std::sort(strikes.begin(), strikes.end());
+  const std::vector<std::size_t>& left = clip.events.heel_strikes[0];
+  for (std::size_t k = 0; k + 1 < left.size(); ++k) {
+    const double duration = static_cast<double>(left[k + 1] - left[k]) * dt;
+    if (duration >= o.min_cycle && duration <= o.max_cycle) {
+      clip.cycles.push_back({left[k], left[k + 1]});
+    }
+  }
+  std::vector<double> step_times;
+  std::vector<double> step_lengths;
+  for (std::size_t k = 0; k < strikes.size(); ++k) {
+    const auto [i, s] = strikes[k];
+    step_lengths.push_back(
+        dot(frames[i].legs[s].ankle - frames[i].legs[1 - s].ankle, plane.forward));
+    if (k + 1 < strikes.size() && strikes[k + 1].second != s) {
+      const double gap = static_cast<double>(strikes[k + 1].first - i) * dt;
+      if (gap > 0.0 && gap < 1.0) step_times.push_back(gap);  // (both feet at once: no step)
+    }
+  }
+  clip.cadence = step_times.empty() ? 0.0 : 60.0 / mean_of(step_times);
+  clip.step_length = mean_of(step_lengths);
+  if (strikes.size() >= 2 && strikes.back().first > strikes.front().first) {
+    const std::size_t i0 = strikes.front().first;
+    const std::size_t i1 = strikes.back().first;
+    clip.speed =
+        dot(frames[i1].root - frames[i0].root, plane.forward) / (static_cast<double>(i1 - i0) * dt);
+  }
+}
+
+// The legs' joints and lengths (into clip.legs) and the rig's segments (notes for estimates).
+rig::Segments measure_segments(CapturedClip& clip, const BvhClip& bvh,
+                               const detail::SkeletonLegs& found,
+                               const std::array<LegPositions, 2>& rest, const Sagittal& plane,
+                               const std::string& where) {
+  const double unit = clip.metres_per_unit;
+  auto name = [&](int j) {
+    return j >= 0 ? bvh.joints[static_cast<std::size_t>(j)].name : std::string();
+  };
+  for (std::size_t s = 0; s < 2; ++s) {
+    const LegPositions& r = rest[s];
+    const detail::LegChain& c = found.legs[s];
+    MeasuredLeg& leg = clip.legs[s];
+    leg = {name(c.hip), name(c.knee), name(c.ankle), name(c.toe), name(c.tip)};
+    leg.thigh = unit * norm(r.knee - r.hip);
+    leg.shank = unit * norm(r.ankle - r.knee);
+    leg.foot = unit * norm(r.toe - r.ankle);
+    leg.has_toes = c.tip >= 0;
+    leg.toes = leg.has_toes ? unit * norm(r.tip - r.toe) : 0.0;
+  }
+  rig::Segments seg;
+  seg.thigh = 0.5 * (clip.legs[0].thigh + clip.legs[1].thigh);
+  seg.shank = 0.5 * (clip.legs[0].shank + clip.legs[1].shank);
+  const double stature = (seg.thigh + seg.shank) / kHipToAnkleShare;
+  double drop = 0.0;
+  for (std::size_t s = 0; s < 2; ++s) {
+    const Vec3 foot = unit * (rest[s].toe - rest[s].ankle);
+    drop -= 0.5 * dot(foot, plane.up);
+    seg.ball += 0.5 * norm(plane.horizontal(foot));
+  }
+  if (drop >= kLowestAnkle) {
+    seg.ankle_height = drop;
+  } else {
+    seg.ankle_height = kAnkleHeightShare * stature;
+    clip.notes.push_back(
+        "the toe bases lie less than 5 mm below the ankles in the rest pose: ankle height from "
+        "proportions, " +
+        number_text(seg.ankle_height) + " m");
+  }
+  seg.heel = kHeelShare * kFootShare * stature;
+  if (clip.legs[0].has_toes && clip.legs[1].has_toes) {
+    seg.toe = 0.5 * (clip.legs[0].toes + clip.legs[1].toes);
+  } else {
+    seg.toe = kToeShare * kFootShare * stature;
+    clip.notes.push_back("a foot without a toe tip: toe length from proportions, " +
+                         number_text(seg.toe) + " m");
+  }
+  try {
+    rig::validate(seg);
+  } catch (const std::invalid_argument& e) {
+    throw MocapError(where, 0,
+                     "expected the skeleton to make a plausible leg (at " + number_text(unit) +
+                         " m per unit): " + e.what());
+  }
+  return seg;
+}
+
 }  // namespace
 
 const char* unit_name(double metres_per_unit) {
@@ -265,46 +479,38 @@ CapturedClip analyse_clip(const BvhClip& bvh, std::string_view source, const Cli
   }
   std::vector<Vec3> position(bvh.joints.size());
   std::vector<Mat3> orientation(bvh.joints.size());
-  auto at = [&](int j) { return position[static_cast<std::size_t>(j)]; };
+  auto legs_now = [&](double unit) {
+    std::array<LegPositions, 2> legs;
+    for (std::size_t s = 0; s < 2; ++s) {
+      const detail::LegChain& c = found.legs[s];
+      auto at = [&](int j) {
+        return j >= 0 ? unit * position[static_cast<std::size_t>(j)] : Vec3{};
+      };
+      legs[s] = {at(c.hip), at(c.knee), at(c.ankle), at(c.toe), at(c.tip)};
+    }
+    return legs;
+  };
 
-  // The rest pose (every channel zero): segment lengths, rest angles, the unit.
-  const std::vector<double> zeros(bvh.channel_count, 0.0);
-  forward_kinematics(bvh, zeros, needed, position, orientation);
-  std::array<LegPositions, 2> rest{};
+  // The rest pose (every channel zero), file units: the unit, rest angles, segments.
+  forward_kinematics(bvh, std::vector<double>(bvh.channel_count, 0.0), needed, position,
+                     orientation);
+  std::array<LegPositions, 2> rest = legs_now(1.0);
   for (std::size_t s = 0; s < 2; ++s) {
-    const detail::LegChain& c = found.legs[s];
-    rest[s] = {at(c.hip), at(c.knee), at(c.ankle), at(c.toe), c.tip >= 0 ? at(c.tip) : Vec3{}};
-  }
-  const double rest_leg = norm(rest[0].knee - rest[0].hip) + norm(rest[0].ankle - rest[0].knee);
-  for (std::size_t s = 0; s < 2; ++s) {
-    const double leg = norm(rest[s].knee - rest[s].hip) + norm(rest[s].ankle - rest[s].knee);
-    if (!(leg > 1e-9)) {
+    if (!(norm(rest[s].knee - rest[s].hip) + norm(rest[s].ankle - rest[s].knee) > 1e-9)) {
       throw MocapError(where, 0,
                        std::string("expected a ") + (s == 0 ? "left" : "right") +
                            " leg of some length in the rest pose found hip, knee and ankle at "
                            "one point");
     }
   }
-  if (options.metres_per_unit) {
-    clip.metres_per_unit = *options.metres_per_unit;
-  } else {
-    clip.unit_guessed = true;
-    clip.metres_per_unit = kUnits[0];
-    for (double unit : kUnits) {
-      if (std::abs(std::log(rest_leg * unit / kTypicalHipToAnkle)) <
-          std::abs(std::log(rest_leg * clip.metres_per_unit / kTypicalHipToAnkle))) {
-        clip.metres_per_unit = unit;
-      }
-    }
-  }
+  clip.unit_guessed = !options.metres_per_unit;
+  clip.metres_per_unit = options.metres_per_unit.value_or(
+      guess_unit(norm(rest[0].knee - rest[0].hip) + norm(rest[0].ankle - rest[0].knee)));
   const double unit = clip.metres_per_unit;
 
-  // Frames kept.
-  if (options.skip) {
-    clip.skipped_frames = *options.skip;
-  } else {
-    clip.skipped_frames = is_calibration_pose(bvh, bvh.frame(0)) ? 1 : 0;
-  }
+  // The frames kept, forward kinematics in metres.
+  clip.skipped_frames =
+      options.skip.value_or(is_calibration_pose(bvh, bvh.frame(0)) ? std::size_t{1} : 0);
   if (clip.skipped_frames >= total || total - clip.skipped_frames < 2) {
     throw MocapError(
         where, 0,
@@ -317,13 +523,10 @@ CapturedClip analyse_clip(const BvhClip& bvh, std::string_view source, const Cli
   for (std::size_t i = 0; i < n; ++i) {
     forward_kinematics(bvh, bvh.frame(clip.skipped_frames + i), needed, position, orientation);
     FramePositions& f = frames[i];
-    f.root = unit * at(found.root);
-    for (std::size_t s = 0; s < 2; ++s) {
-      const detail::LegChain& c = found.legs[s];
-      f.legs[s] = {unit * at(c.hip), unit * at(c.knee), unit * at(c.ankle), unit * at(c.toe),
-                   c.tip >= 0 ? unit * at(c.tip) : Vec3{}};
-      for (const Vec3* p : {&f.root, &f.legs[s].hip, &f.legs[s].knee, &f.legs[s].ankle,
-                            &f.legs[s].toe, &f.legs[s].tip}) {
+    f.root = unit * position[static_cast<std::size_t>(found.root)];
+    f.legs = legs_now(unit);
+    for (const LegPositions& l : f.legs) {
+      for (const Vec3* p : {&std::as_const(f.root), &l.hip, &l.knee, &l.ankle, &l.toe, &l.tip}) {
         for (double v : *p) {
           if (!(std::abs(v) <= kFarthest)) {
             throw MocapError(where, 0,
@@ -337,30 +540,12 @@ CapturedClip analyse_clip(const BvhClip& bvh, std::string_view source, const Cli
     }
   }
 
-  // Up: given, or the axis along which the hips stand above the ankles.
-  if (options.up) {
-    clip.up = *options.up;
-  } else {
-    Vec3 rise{};
-    for (const FramePositions& f : frames) {
-      rise = rise + 0.5 * ((f.legs[0].hip + f.legs[1].hip) - (f.legs[0].ankle + f.legs[1].ankle));
-    }
-    const double along_y = rise[1];
-    const double along_z = rise[2];
-    const double largest = std::max(along_y, along_z);
-    if (!(largest > 0.5 * norm(rise))) {
-      throw MocapError(where, 0,
-                       "cannot tell the up axis: the hips do not stand above the ankles along "
-                       "+Y or +Z; give it (--up y or --up z)");
-    }
-    clip.up = along_y >= along_z ? UpAxis::Y : UpAxis::Z;
-    clip.up_detected = true;
-  }
-  const Vec3 up = clip.up == UpAxis::Y ? Vec3{0, 1, 0} : Vec3{0, 0, 1};
-  auto horizontal = [&](const Vec3& v) { return v - dot(v, up) * up; };
-
-  // Walking direction.
-  const Vec3 travel = horizontal(frames.back().root - frames.front().root);
+  // The sagittal plane: up given or detected, forward the root's horizontal travel.
+  clip.up_detected = !options.up;
+  clip.up = options.up ? *options.up : detect_up(frames, where);
+  Sagittal plane;
+  plane.up = clip.up == UpAxis::Y ? Vec3{0, 1, 0} : Vec3{0, 0, 1};
+  const Vec3 travel = plane.horizontal(frames.back().root - frames.front().root);
   const double travelled = norm(travel);
   if (!(travelled > 1e-6)) {
     throw MocapError(where, 0,
@@ -372,173 +557,31 @@ CapturedClip analyse_clip(const BvhClip& bvh, std::string_view source, const Cli
     clip.notes.push_back("the root travels only " + number_text(travelled) +
                          " m: the walking direction is unreliable");
   }
-  const Vec3 f = (1.0 / (travelled + 1e-12)) * travel;
-  clip.forward = f;
+  plane.forward = (1.0 / (travelled + 1e-12)) * travel;
+  clip.forward = plane.forward;
 
-  auto point = [&](std::size_t i, std::size_t side, int part) -> const Vec3& {
-    const LegPositions& p = frames[i].legs[side];
-    return part == 0 ? p.ankle : p.toe;
-  };
-  auto speed = [&](std::size_t side, int part, std::size_t i, bool flat) {
-    const std::size_t a = i >= kSpeedHalfWindow ? i - kSpeedHalfWindow : 0;
-    const std::size_t b = std::min(n - 1, i + kSpeedHalfWindow);
-    const Vec3 d = point(b, side, part) - point(a, side, part);
-    return norm(flat ? horizontal(d) : d) / (static_cast<double>(b - a) * dt);
-  };
+  // Contacts, events, segments.
+  const FootTracks feet(frames, plane, dt);
+  const std::array<Line, 2> ground = fit_ground(feet, plane, options.ground_speed);
+  const std::array<std::vector<bool>, 2> contact = {
+      foot_contact(feet, 0, ground, plane, options, dt),
+      foot_contact(feet, 1, ground, plane, options, dt)};
+  measure_gait(clip, contact, frames, plane, dt, options);
+  const rig::Segments segments = measure_segments(clip, bvh, found, rest, plane, where);
 
-  // Ground lines of the ankles (part 0) and the toe bases (part 1), both feet pooled.
-  std::array<Line, 2> ground;
-  for (int part = 0; part < 2; ++part) {
-    std::vector<std::array<double, 3>> samples;
-    samples.reserve(2 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t s = 0; s < 2; ++s) {
-        const Vec3& p = point(i, s, part);
-        samples.push_back({dot(p, f), dot(p, up), speed(s, part, i, true)});
-      }
-    }
-    ground[static_cast<std::size_t>(part)] = ground_line(samples, options.ground_speed);
-  }
-
-  // Angles and contacts.
-  std::array<std::vector<rig::LegAngles>, 2> angles;
-  std::array<std::vector<bool>, 2> contact;
-  const auto shortest_run =
-      static_cast<std::size_t>(std::max(1.0, std::nearbyint(options.min_run / dt)));
-  for (std::size_t s = 0; s < 2; ++s) {
-    const LegPositions& r = rest[s];
-    const bool has_tip = found.legs[s].tip >= 0;
-    const double rest_ankle = angle_between(r.ankle - r.knee, r.toe - r.ankle);
-    const double rest_toe = has_tip ? angle_between(r.toe - r.ankle, r.tip - r.toe) : 0.0;
-    std::vector<bool> on(n);
-    angles[s].resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const LegPositions& p = frames[i].legs[s];
-      const Vec3 thigh = p.knee - p.hip;
-      const Vec3 shank = p.ankle - p.knee;
-      const Vec3 foot = p.toe - p.ankle;
-      rig::LegAngles& a = angles[s][i];
-      a.hip = std::atan2(dot(thigh, f), -dot(thigh, up));
-      a.knee = angle_between(thigh, shank);
-      a.ankle = angle_between(shank, foot) - rest_ankle;
-      a.toe = has_tip ? angle_between(foot, p.tip - p.toe) - rest_toe : 0.0;
-      bool down = false;
-      for (int part = 0; part < 2; ++part) {
-        const Vec3& q = point(i, s, part);
-        const double height = dot(q, up) - ground[static_cast<std::size_t>(part)].at(dot(q, f));
-        down =
-            down ||
-            (height < options.contact_height && speed(s, part, i, true) < options.contact_speed) ||
-            speed(s, part, i, false) < options.still_speed;
-      }
-      on[i] = down;
-    }
-    contact[s] = debounce(on, shortest_run);
-  }
-
-  // Events, cycles, cadence, step length, speed.
-  std::vector<std::pair<std::size_t, std::size_t>> strikes;  // (frame, side), in order
-  for (std::size_t s = 0; s < 2; ++s) {
-    for (std::size_t i = 1; i < n; ++i) {
-      if (contact[s][i] && !contact[s][i - 1]) {
-        clip.events.heel_strikes[s].push_back(i);
-        strikes.emplace_back(i, s);
-      }
-      if (!contact[s][i] && contact[s][i - 1]) clip.events.toe_offs[s].push_back(i);
-    }
-  }
-  std::sort(strikes.begin(), strikes.end());
-  const std::vector<std::size_t>& left = clip.events.heel_strikes[0];
-  for (std::size_t k = 0; k + 1 < left.size(); ++k) {
-    const double duration = static_cast<double>(left[k + 1] - left[k]) * dt;
-    if (duration >= options.min_cycle && duration <= options.max_cycle) {
-      clip.cycles.push_back({left[k], left[k + 1]});
-    }
-  }
-  std::vector<double> step_times;
-  std::vector<double> step_lengths;
-  for (std::size_t k = 0; k < strikes.size(); ++k) {
-    const auto [i, s] = strikes[k];
-    step_lengths.push_back(dot(frames[i].legs[s].ankle - frames[i].legs[1 - s].ankle, f));
-    if (k + 1 < strikes.size() && strikes[k + 1].second != s) {
-      const double gap = static_cast<double>(strikes[k + 1].first - i) * dt;
-      if (gap > 0.0 && gap < 1.0) step_times.push_back(gap);  // (both feet at once: no step)
-    }
-  }
-  clip.cadence = step_times.empty() ? 0.0 : 60.0 / mean_of(step_times);
-  clip.step_length = mean_of(step_lengths);
-  if (strikes.size() >= 2 && strikes.back().first > strikes.front().first) {
-    const std::size_t i0 = strikes.front().first;
-    const std::size_t i1 = strikes.back().first;
-    clip.speed = dot(frames[i1].root - frames[i0].root, f) / (static_cast<double>(i1 - i0) * dt);
-  }
-
-  // Segments.
-  for (std::size_t s = 0; s < 2; ++s) {
-    const LegPositions& r = rest[s];
-    const detail::LegChain& c = found.legs[s];
-    MeasuredLeg& leg = clip.legs[s];
-    leg.hip = bvh.joints[static_cast<std::size_t>(c.hip)].name;
-    leg.knee = bvh.joints[static_cast<std::size_t>(c.knee)].name;
-    leg.ankle = bvh.joints[static_cast<std::size_t>(c.ankle)].name;
-    leg.toe = bvh.joints[static_cast<std::size_t>(c.toe)].name;
-    leg.tip = c.tip >= 0 ? bvh.joints[static_cast<std::size_t>(c.tip)].name : "";
-    leg.thigh = unit * norm(r.knee - r.hip);
-    leg.shank = unit * norm(r.ankle - r.knee);
-    leg.foot = unit * norm(r.toe - r.ankle);
-    leg.has_toes = c.tip >= 0;
-    leg.toes = leg.has_toes ? unit * norm(r.tip - r.toe) : 0.0;
-  }
-  rig::Segments& seg = clip.motion.segments;
-  seg.thigh = 0.5 * (clip.legs[0].thigh + clip.legs[1].thigh);
-  seg.shank = 0.5 * (clip.legs[0].shank + clip.legs[1].shank);
-  const double stature = (seg.thigh + seg.shank) / kHipToAnkleShare;
-  double drop = 0.0;
-  double ball = 0.0;
-  for (std::size_t s = 0; s < 2; ++s) {
-    const Vec3 foot = unit * (rest[s].toe - rest[s].ankle);
-    const double down = -dot(foot, up);
-    drop += 0.5 * down;
-    ball += 0.5 * norm(horizontal(foot));
-  }
-  seg.ball = ball;
-  if (drop >= 0.005) {
-    seg.ankle_height = drop;
-  } else {
-    seg.ankle_height = kAnkleHeightShare * stature;
-    clip.notes.push_back(
-        "the toe bases lie less than 5 mm below the ankles in the rest pose: "
-        "ankle height from proportions, " +
-        number_text(seg.ankle_height) + " m");
-  }
-  seg.heel = kHeelShare * kFootShare * stature;
-  if (clip.legs[0].has_toes && clip.legs[1].has_toes) {
-    seg.toe = 0.5 * (clip.legs[0].toes + clip.legs[1].toes);
-  } else {
-    seg.toe = kToeShare * kFootShare * stature;
-    clip.notes.push_back("no toe tips on both feet: toe length from proportions, " +
-                         number_text(seg.toe) + " m");
-  }
-  try {
-    rig::validate(seg);
-  } catch (const std::invalid_argument& e) {
-    throw MocapError(where, 0,
-                     std::string("expected the skeleton to make a plausible leg (at ") +
-                         number_text(unit) + " m per unit): " + e.what());
-  }
-
-  // The motion in the rig's terms: x along f from the root's first position, y above the
-  // toe bases' ground at x = 0.
-  const double x0 = dot(frames.front().root, f);
+  // The motion in the rig's terms: x along f from the root's first position, y above the toe
+  // bases' ground at x = 0.
   const Line& floor = ground[1];
   if (!(std::abs(floor.slope) <= kSteepestGround)) {
     throw MocapError(where, 0,
                      "expected the toe bases' ground to be a floor found it rising " +
                          number_text(floor.slope) + " m per metre walked");
   }
+  const double x0 = dot(frames.front().root, plane.forward);
   const double y0 = floor.at(x0);
   eval::Motion& motion = clip.motion;
   motion.fps = 1.0 / dt;
+  motion.segments = segments;
   motion.captured = true;
   motion.frames.resize(n);
   double x_min = 0.0;
@@ -547,11 +590,11 @@ CapturedClip analyse_clip(const BvhClip& bvh, std::string_view source, const Cli
     eval::Frame& frame = motion.frames[i];
     frame.time = static_cast<double>(i) * dt;
     const Vec3 mid = 0.5 * (frames[i].legs[0].hip + frames[i].legs[1].hip);
-    frame.pose.pelvis = {dot(mid, f) - x0, dot(mid, up) - y0};
-    frame.pose.pelvis_tilt = 0.0;
+    frame.pose.pelvis = {dot(mid, plane.forward) - x0, dot(mid, plane.up) - y0};
     for (std::size_t s = 0; s < 2; ++s) {
-      frame.pose.legs[s] = angles[s][i];
-      frame.points[s] = rig::forward_kinematics(seg, frame.pose.pelvis, 0.0, angles[s][i]);
+      frame.pose.legs[s] = leg_angles(frames[i].legs[s], rest[s], found.legs[s].tip >= 0, plane);
+      frame.points[s] =
+          rig::forward_kinematics(segments, frame.pose.pelvis, 0.0, frame.pose.legs[s]);
       frame.contact[s] = contact[s][i];
     }
     x_min = std::min(x_min, frame.pose.pelvis.x);
