@@ -17,6 +17,8 @@ packages=(
   libfuzzylite-dev fuzzylite
   # BVH import check with three.js (npm lock file in tests/js)
   nodejs npm
+  # the mocap reader's reference extractor (tests/tools/bvh_sagittal.py), run by the tests
+  python3
 )
 
 # A Node.js installed otherwise counts: NodeSource's nodejs package bundles npm and conflicts with

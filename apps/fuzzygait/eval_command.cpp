@@ -40,7 +40,8 @@ void add_eval_command(CLI::App& app) {
   };
   auto o = std::make_shared<Options>();
   CLI::App* eval = app.add_subcommand("eval", "Measure a walk CSV against normative gait data");
-  eval->add_option("walk", o->csv, "Walk CSV written by `fuzzygait walk`")->required();
+  eval->add_option("walk", o->csv, "Walk CSV written by `fuzzygait walk` or `fuzzygait mocap`")
+      ->required();
   eval->add_option("--reference", o->reference,
                    "Normative curves: built-in name (schwartz2008_veryslow, _slow, _free, _fast, "
                    "_veryfast) or a CSV file");

@@ -19,6 +19,8 @@ namespace {
 
 constexpr const char* kPointNames[] = {"hip", "knee", "ankle", "heel", "ball", "tip"};
 constexpr const char* kSidePrefix[] = {"l", "r"};
+// Optional, after the others: 1 on every row of captured motion (eval::Motion::captured).
+constexpr const char* kCapturedColumn = "captured";
 
 std::vector<std::string> header() {
   std::vector<std::string> h = {"time", "pelvis_x", "pelvis_y", "pelvis_tilt"};
@@ -73,6 +75,7 @@ void write_walk_csv(std::ostream& out, const eval::Motion& motion) {
   std::string line;
   for (const std::string& h : header())
     line += (line.empty() ? "" : ",") + h;
+  if (motion.captured) line += std::string(",") + kCapturedColumn;
   out << line << "\n";
   for (const eval::Frame& f : motion.frames) {
     line.clear();
@@ -92,6 +95,7 @@ void write_walk_csv(std::ostream& out, const eval::Motion& motion) {
         append(line, q->y, 6);
       }
     }
+    if (motion.captured) line += ",1";
     out << line << "\n";
   }
 }
@@ -102,6 +106,9 @@ eval::Motion read_walk_csv(std::istream& in, std::string_view source) {
   if (!std::getline(in, line)) throw fuzzy::ParseError(where, 1, "the file is empty");
   const std::vector<std::string> columns = detail::split_csv_line(line);
   const std::vector<std::size_t> wanted = detail::required_columns(columns, header(), where);
+  // Where the optional `captured` column is; columns.size() when there is none.
+  const auto captured_column = static_cast<std::size_t>(
+      std::find(columns.begin(), columns.end(), kCapturedColumn) - columns.begin());
   eval::Motion motion;
   std::vector<int> frame_lines;  // the line each frame was read from
   int number = 1;
@@ -144,6 +151,22 @@ eval::Motion read_walk_csv(std::istream& in, std::string_view source) {
         q->x = v[k++];
         q->y = v[k++];
       }
+    }
+    if (captured_column < columns.size()) {
+      const std::size_t c = captured_column;
+      const std::string cell = c < cells.size() ? cells[c] : std::string();
+      if (cell != "0" && cell != "1") {
+        throw fuzzy::ParseError(
+            where, number,
+            std::string("column '") + kCapturedColumn + "': '" + cell + "' is neither 0 nor 1");
+      }
+      if (!motion.frames.empty() && (cell == "1") != motion.captured) {
+        throw fuzzy::ParseError(where, number,
+                                std::string("column '") + kCapturedColumn + "': " + cell +
+                                    " differs from the rows before (the whole motion is "
+                                    "captured or not)");
+      }
+      motion.captured = cell == "1";
     }
     if (!motion.frames.empty() && !(f.time > motion.frames.back().time)) {
       throw fuzzy::ParseError(

@@ -277,6 +277,8 @@ class Reader {
 
 }  // namespace
 
+Value::Value() = default;
+
 const Value* Value::find(std::string_view key) const {
   for (const auto& [name, value] : object) {
     if (name == key) return &value;

@@ -12,6 +12,10 @@
 namespace fuzzygait::common::json {
 
 struct Value {
+  // Defined in json.cpp: defined here, clang (14, with libstdc++ 12) instantiates the members'
+  // destructors while std::pair<std::string, Value> below is still incomplete, and fails.
+  Value();
+
   enum class Kind { Null, Boolean, Number, String, Array, Object };
   Kind kind = Kind::Null;
   bool boolean = false;
