@@ -35,6 +35,7 @@ void add_fuzzy_command(CLI::App& app);
 // `fuzzy plot`, a subcommand of `fuzzy` (fuzzy_plot_command.cpp).
 void add_fuzzy_plot_command(CLI::App& fuzzy);
 void add_tune_command(CLI::App& app);
+void add_tune_terrain_command(CLI::App& app);
 void add_walk_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_mocap_command(CLI::App& app);

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   fuzzygait::cli::add_mocap_command(app);
   fuzzygait::cli::add_fuzzy_command(app);
   fuzzygait::cli::add_tune_command(app);
+  fuzzygait::cli::add_tune_terrain_command(app);
   int status = 0;
   try {
     app.parse(argc, argv);

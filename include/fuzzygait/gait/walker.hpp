@@ -163,6 +163,7 @@ class Walker {
   bool close_chain(int leg);
   void settle_foot(int leg, const rig::LegAngles& commanded);
   double stance_target() const;
+  double sole_angle(const LegState& l) const;
   void keep_knee_up(int leg, double known_good);
   void clear_ground(int leg, double max_change, double margin, bool with_tip = true);
 

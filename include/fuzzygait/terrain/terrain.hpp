@@ -99,6 +99,8 @@ class Terrain {
   // The profile between x0 and x1 as points, for drawing and files.
   std::vector<Point> profile(double x0, double x1) const;
   const std::vector<Point>& points() const { return points_; }
+  // Whether every point's height is the same, to the bit.
+  bool level() const { return level_; }
 
   // Where a foot may stand: the stretches of ground between risers (segments steeper than
   // kSteepestFoothold), in order along x. A tread of a stair is one; a ramp and the level ground

@@ -1,5 +1,6 @@
 #include "fuzzygait/io/controller_files.hpp"
 
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,45 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
                fuzzy::write_fll(set.controllers.at(static_cast<std::size_t>(s)).engine()));
   }
   manifest["controllers"] = files;
+  // The terrain words: each kind of ground's words, and its files named GROUND_SLOT_WORD.fll.
+  nlohmann::ordered_json terrain;
+  constexpr std::array<const char*, gait::kGroundCount> kGroundNames = {"slopes", "stairs"};
+  for (std::size_t g = 0; g < set.ground.size(); ++g) {
+    const gait::ControllerSet::GroundWords& words = set.ground[g];
+    if (words.empty()) continue;
+    nlohmann::ordered_json ground;
+    nlohmann::ordered_json peaks;
+    nlohmann::ordered_json knees;
+    nlohmann::json ascent = nlohmann::json::array();
+    for (std::size_t w = 0; w < words.words.size(); ++w) {
+      peaks[words.words[w]] = words.peaks[w];
+      if (words.ascent[w]) ascent.push_back(words.words[w]);
+      if (words.landing_knee[w] > 0.0) {
+        knees[words.words[w]] = std::round(rig::degrees(words.landing_knee[w]) * 1e6) / 1e6;
+      }
+    }
+    ground["incline_deg"] = peaks;
+    if (!ascent.empty()) ground["ascent"] = ascent;
+    if (!knees.empty()) ground["landing_knee_deg"] = knees;
+    nlohmann::ordered_json by_slot;
+    for (int s = 0; s < gait::kSlotCount; ++s) {
+      nlohmann::ordered_json by_word;
+      for (std::size_t w = 0; w < words.words.size(); ++w) {
+        const int c = words.of_slot[static_cast<std::size_t>(s)][w];
+        if (c < 0) continue;
+        const std::string name = std::string(kGroundNames[g]) + "_" +
+                                 std::string(gait::slot_name(s)) + "_" + words.words[w] + ".fll";
+        by_word[words.words[w]] = name;
+        write_file(
+            directory / name,
+            fuzzy::write_fll(set.terrain_controllers.at(static_cast<std::size_t>(c)).engine()));
+      }
+      if (!by_word.empty()) by_slot[std::string(gait::slot_name(s))] = by_word;
+    }
+    if (!by_slot.empty()) ground["controllers"] = by_slot;
+    terrain[kGroundNames[g]] = ground;
+  }
+  if (!terrain.empty()) manifest["terrain"] = terrain;
   write_file(directory / "manifest.json", manifest.dump(2) + "\n");
 }
 

@@ -518,6 +518,29 @@ FUZZYGAIT_ALWAYS_INLINE LegPoints WalkerStages::hip_at_origin(Walker& w, int leg
   return leg_points(w, leg, {0.0, 0.0}, w.state_.legs[static_cast<std::size_t>(leg)].angles);
 }
 
+// The angle (radians, toes up +) at which a planted foot's sole rests on the ground: the slope at
+// its anchor, tilted where the ground under the rest of the sole rises above that slope (the foot
+// of a ramp, a kerb's edge): on the heel (Heel, Flat) it rests on the highest of the ground
+// ahead; on the ball, on the highest behind.
+double Walker::sole_angle(const LegState& l) const {
+  const double slope = terrain_->slope(l.anchor.x);
+  if (terrain_->level()) return slope;
+  const double sole = segments_.heel + segments_.ball;
+  const double reach = sole * std::cos(slope);
+  if (l.phase == Phase::Ball) {
+    const double heel_x = l.anchor.x - reach;
+    double angle = std::min(slope, std::atan2(l.anchor.y - terrain_->height(heel_x), reach));
+    for (const Point& c : terrain_->corners_between(heel_x, l.anchor.x))
+      angle = std::min(angle, std::atan2(l.anchor.y - c.y, l.anchor.x - c.x));
+    return angle;
+  }
+  const double ball_x = l.anchor.x + reach;
+  double angle = std::max(slope, std::atan2(terrain_->height(ball_x) - l.anchor.y, reach));
+  for (const Point& c : terrain_->corners_between(l.anchor.x, ball_x))
+    angle = std::max(angle, std::atan2(c.y - l.anchor.y, c.x - l.anchor.x));
+  return angle;
+}
+
 // Two-link IK of the newly planted leg (the one not carrying the pelvis): hip and knee put its
 // contact point back on its anchor (the ankle itself while the foot is flat). Returns false when
 // out of reach.
@@ -525,7 +548,7 @@ bool Walker::close_chain(int leg) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
   const rig::Segments& s = segments_;
   const double tilt = state_.pelvis_tilt;
-  const double slope = terrain_->slope(l.anchor.x);
+  const double slope = sole_angle(l);
   Point target = l.anchor;
   double we = 0.0;
   double wn = -s.shank;
@@ -580,7 +603,7 @@ bool Walker::close_chain(int leg) {
 void Walker::settle_foot(int leg, const LegAngles& commanded) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
   const double tilt = state_.pelvis_tilt;
-  const double slope = terrain_->slope(l.anchor.x);
+  const double slope = sole_angle(l);
   const double sole_length = segments_.heel + segments_.ball;
   switch (l.phase) {
     case Phase::Heel:
@@ -643,7 +666,7 @@ FUZZYGAIT_ALWAYS_INLINE double WalkerStages::knee_gap(const Walker& w, int leg,
 // target was behind it (the kneeling leg's foot far behind the hip).
 void Walker::keep_knee_up(int leg, double known_good) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
-  const double slope = terrain_->slope(l.anchor.x);
+  const double slope = sole_angle(l);
   auto gap = [&](double knee) {
     l.angles.knee = knee;
     if (l.phase == Phase::Flat) l.angles.ankle = slope - shank_of(state_.pelvis_tilt, l.angles);
@@ -705,7 +728,9 @@ FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, co
     // Arrived when the thigh is where a straight leg's heel would point at the foot target; under
     // the set's ascent words (up a stair), where the target lies well within the leg's reach, where
     // the leg with its knee bent puts the heel on it: the paper's end position of the knee.
-    const Point target{l.target_x, w.terrain_->height(l.target_x)};
+    // (A heel reaching over a tread's edge aims at the tread's height, not at the ground below.)
+    const terrain::Terrain::Run& run = w.terrain_->runs()[l.target_run];
+    const Point target{l.target_x, w.terrain_->height(std::clamp(l.target_x, run.begin, run.end))};
     end = inclination(p.hip, target) + w.heel_offset_;
     if (landing_knee > 0.0) {
       // The thigh's angle to the hip-heel line of a leg landing with its knee bent so.
@@ -914,10 +939,23 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
     store(l.angles, angles);
     d.commanded[static_cast<std::size_t>(leg)] = l.angles;
   }
-  // The carrying foot's rules: with them every joint angle is set for the chain that follows
-  // (finish_step() places the legs from here).
-  if (w.state_.lead >= 0) {
-    w.settle_foot(w.state_.lead, d.commanded[static_cast<std::size_t>(w.state_.lead)]);
+  const int lead = w.state_.lead;
+  if (lead >= 0) {
+    const auto k = static_cast<std::size_t>(lead);
+    LegState& carrying = w.state_.legs[k];
+    // The body waits for a swinging foot that has fallen behind it, held back by a stair's edge
+    // (its foothold on another run than the ground under it): past that foot's target, the
+    // carrying leg holds still until the foot lands.
+    const LegState& other = w.state_.legs[1 - k];
+    if (other.phase == Phase::Swing && w.state_.pelvis.x > other.target_x &&
+        w.terrain_->run_at(w.end_points_[1 - k].ball.x) != other.target_run) {
+      carrying.angles = d.previous[k];
+      carrying.velocity = LegAngles{};
+      d.commanded[k] = carrying.angles;
+    }
+    // The carrying foot's rules: with them every joint angle is set for the chain that follows
+    // (finish_step() places the legs from here).
+    w.settle_foot(lead, d.commanded[k]);
   }
 }
 
@@ -1012,8 +1050,7 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
     // On the heel or the ball with no change of phase, the foot's rules changed nothing the
     // chain depends on (a ball's toes rest as the chain left them): it is still closed.
     bool reached = (l.phase == closed_in && l.phase != Phase::Flat) || w.close_chain(leg);
-    if (reached && l.phase == Phase::Ball &&
-        foot_of(tilt, l.angles) >= w.terrain_->slope(l.anchor.x)) {
+    if (reached && l.phase == Phase::Ball && foot_of(tilt, l.angles) >= w.sole_angle(l)) {
       // The chain closed with the heel back on the ground.
       w.settle_foot(leg, l.angles);
       reached = w.close_chain(leg);

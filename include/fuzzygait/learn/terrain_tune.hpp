@@ -1,0 +1,101 @@
+// Tuning a controller set's terrain words (the manifest's "terrain": a kind of ground's word, such
+// as the stairs' "up", with its controller files and landing knee) by walking the ground they are
+// for and measuring the walk with eval::evaluate_terrain against the bounds of published human
+// data. The same CMA-ES as the level tuner; the result keeps the files' rules and words.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/eval/terrain_report.hpp"
+#include "fuzzygait/gait/controllers.hpp"
+
+namespace fuzzygait::learn {
+
+// A range a group figure should stay in (NaN-free bounds; use +-infinity for one side).
+struct Range {
+  double min;
+  double max;
+};
+
+// What a walk on one kind of ground should show (degrees, percent, steps a minute), after
+// docs/results.md's sources: Riener et al. 2002, Protopapadaki et al. 2007, McFadyen & Winter 1988
+// for stairs. An unbounded range (-inf, inf) is not priced.
+struct TerrainBounds {
+  eval::Footing footing = eval::Footing::StairUp;
+  Range stance_percent{62.0, 76.0};
+  Range hip{50.0, 80.0};
+  Range knee{50.0, 80.0};
+  Range peak_swing_knee{80.0, 105.0};
+  Range peak_swing_hip{55.0, 75.0};
+  Range knee_at_toe_off{-1e9, 1e9};
+  Range hip_range{-1e9, 1e9};
+  Range toe_down_vs_level{10.0, 30.0};
+  Range cadence{60.0, 85.0};
+};
+// The bounds for stair ascent and descent.
+TerrainBounds stair_ascent_bounds();
+TerrainBounds stair_descent_bounds();
+
+struct TerrainCondition {
+  std::string terrain;  // a terrain spec (io::terrain_from_spec), e.g. "stairs:0.17:0.28:10"
+  double stature = 1.75;
+  double step_length = 0.70;
+  double seconds = 16.0;  // walked from the default start
+  TerrainBounds bounds;
+};
+
+// Every price of the cost, named, in its unit.
+struct TerrainWeights {
+  double missing_height = 2000.0;  // a metre of the terrain's rise or drop not reached
+  double bound = 0.3;              // a unit (deg, %, steps/min) of a group mean out of its range
+  double bound_range = 0.1;        // a unit of a group's min or max out of the range
+  double contact = 2.0;            // a millimetre of slip a frame or penetration past 1 mm
+  double clearance = 1.0;          // a millimetre of swing clearance short of 10 mm
+  double edge_across = 2.0;        // a millimetre of a foot's sole across an edge at a strike
+  double nan_walk = 1e5;           // a walk with a NaN, or that could not be walked
+  double pop = 1.0;                // a millimetre of the pelvis's largest move a frame past 80 mm
+};
+
+// Which words to tune: a ground and a word of its incline_deg.
+struct TerrainWord {
+  gait::Ground ground = gait::Ground::Stairs;
+  std::string word;
+};
+
+struct TerrainTuneOptions {
+  std::vector<TerrainCondition> conditions;
+  std::vector<TerrainWord> words;
+  TerrainWeights weights;
+  double fps = 60.0;
+  int generations = 150;
+  int digits = 3;  // the values written are rounded to this many significant digits
+  int threads = 2;
+  std::uint64_t seed = 1;
+  double sigma = 0.2;
+  std::function<void(int generation, double cost)> progress;
+};
+
+// Throws std::invalid_argument naming the first field out of its range, an unknown word or a
+// bad terrain spec.
+void validate(const TerrainTuneOptions& options, const gait::ControllerSet& set);
+
+// The objective, lower is better: each condition walked and priced. `report` receives a summary
+// per condition.
+double terrain_cost(const gait::ControllerSet& set, const TerrainTuneOptions& options,
+                    std::string* report = nullptr);
+
+struct TerrainTuneResult {
+  gait::ControllerSet set;  // the best found, its values rounded to `digits`
+  double cost = 0.0;        // terrain_cost of `set`
+  double start_cost = 0.0;  // of the set tuning began from
+  int evaluations = 0;
+};
+
+// Tunes the output values, the delta knots and the landing knee of the given words' terrain
+// files. The words must have files of their own in `start`.
+TerrainTuneResult tune_terrain(const gait::ControllerSet& start, const TerrainTuneOptions& options);
+
+}  // namespace fuzzygait::learn
