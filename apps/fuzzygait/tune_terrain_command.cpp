@@ -16,18 +16,29 @@ namespace {
 // The walks a preset tunes over: the stairs and Reznick et al.'s (2021) geometries, at
 // three statures.
 std::vector<learn::TerrainCondition> preset_conditions(const std::string& preset) {
+  if (preset == "ramps-up" || preset == "ramps-down") {
+    const int sign = preset == "ramps-up" ? 1 : -1;
+    std::vector<learn::TerrainCondition> ramps;
+    for (const int degrees : {5, 10, 15, 20}) {
+      ramps.push_back({"slope:" + std::to_string(sign * degrees), degrees == 10 ? 1.60 : 1.75,
+                       degrees == 15 ? 0.60 : 0.70, 12.0, learn::ramp_bounds(sign * degrees),
+                       std::nullopt});
+    }
+    return ramps;
+  }
   const bool up = preset == "stairs-up";
   if (!up && preset != "stairs-down") {
-    throw std::invalid_argument("--preset must be stairs-up or stairs-down, got '" + preset + "'");
+    throw std::invalid_argument(
+        "--preset must be stairs-up, stairs-down, ramps-up or ramps-down, got '" + preset + "'");
   }
   const learn::TerrainBounds bounds =
       up ? learn::stair_ascent_bounds() : learn::stair_descent_bounds();
   const std::string sign = up ? "" : "-";
   return {
-      {"stairs:" + sign + "0.17:0.28:10", 1.75, 0.70, 16.0, bounds},
-      {"stairs:" + sign + "0.12:0.305:6", 1.60, 0.65, 12.0, bounds},
-      {"stairs:" + sign + "0.162:0.285:6", 2.00, 0.75, 12.0, bounds},
-      {"stairs:" + sign + "0.146:0.295:4", 1.75, 0.70, 10.0, bounds},
+      {"stairs:" + sign + "0.17:0.28:10", 1.75, 0.70, 16.0, bounds, std::nullopt},
+      {"stairs:" + sign + "0.12:0.305:6", 1.60, 0.65, 12.0, bounds, std::nullopt},
+      {"stairs:" + sign + "0.162:0.285:6", 2.00, 0.75, 12.0, bounds, std::nullopt},
+      {"stairs:" + sign + "0.146:0.295:4", 1.75, 0.70, 10.0, bounds, std::nullopt},
   };
 }
 
@@ -59,7 +70,9 @@ void add_tune_terrain_command(CLI::App& app) {
   tune->add_option("--controllers", o->controllers, "Start from this controller set folder");
   tune->add_option("--style", o->style, "Start from this built-in set (default: default)");
   tune->add_option("-o,--output", o->output, "Folder to write the tuned set to")->required();
-  tune->add_option("--preset", o->preset, "The walks: stairs-up or stairs-down")->required();
+  tune->add_option("--preset", o->preset,
+                   "The walks: stairs-up, stairs-down, ramps-up or ramps-down")
+      ->required();
   tune->add_option("--words", o->words, "The words to tune, e.g. stairs:up (repeatable)")
       ->required();
   tune->add_option("--generations", t.generations, "CMA-ES generations")

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,10 +35,33 @@ struct TerrainBounds {
   Range hip_range{-1e9, 1e9};
   Range toe_down_vs_level{10.0, 30.0};
   Range cadence{60.0, 85.0};
+  Range mid_stance_sole{-1e9, 1e9};     // deg, the sole to the surface at mid-stance
+  Range step_error_percent{-1e9, 1e9};  // the steps' length against the command
+  // Against the same body's level walk (the level group's means): hip and knee flexion at contact,
+  // the ankle at mid-stance and the most knee flexion in early stance, each shifted by this many
+  // degrees per degree of the ramp's slope (ramps only; unbounded: not priced).
+  Range hip_per_degree{-1e9, 1e9};
+  Range knee_per_degree{-1e9, 1e9};
+  Range mid_stance_ankle_per_degree{-1e9, 1e9};
+  Range early_stance_knee_per_degree{-1e9, 1e9};
+  int ramp_degrees = 0;  // the ramp's slope, for the per-degree shifts and the group's angle
 };
 // The bounds for stair ascent and descent.
 TerrainBounds stair_ascent_bounds();
 TerrainBounds stair_descent_bounds();
+// Ramps of `degrees` (uphill +): the sole within 5 deg of the surface in mid-stance, steps within
+// 5 % of the command; uphill hip and knee more flexed at contact (McIntosh et al. 2006: about
+// 1-1.5 deg a degree for the hip) and the stance ankle dorsiflexed by about the slope; downhill
+// hip less flexed at contact and more knee flexion in early stance.
+TerrainBounds ramp_bounds(int degrees);
+
+// The level walk a condition's per-degree bounds compare with.
+struct LevelReference {
+  double hip = 0.0;  // means of the level steps, degrees
+  double knee = 0.0;
+  double mid_stance_ankle = 0.0;
+  double early_stance_knee = 0.0;
+};
 
 struct TerrainCondition {
   std::string terrain;  // a terrain spec (io::terrain_from_spec), e.g. "stairs:0.17:0.28:10"
@@ -45,7 +69,13 @@ struct TerrainCondition {
   double step_length = 0.70;
   double seconds = 16.0;  // walked from the default start
   TerrainBounds bounds;
+  // Measured on flat ground by terrain_cost when missing (tune_terrain measures it once).
+  std::optional<LevelReference> level;
 };
+
+// The level walk of `set` for a condition's body and step.
+LevelReference level_reference(const gait::ControllerSet& set, const TerrainCondition& condition,
+                               double fps);
 
 // Every price of the cost, named, in its unit.
 struct TerrainWeights {

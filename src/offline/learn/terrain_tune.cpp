@@ -168,8 +168,12 @@ double condition_cost(const gait::ControllerSet& set, const TerrainCondition& c,
     }
     cost += wt.pop * std::max(0.0, 1000.0 * pop - 80.0);
     const TerrainBounds& b = c.bounds;
+    const LevelReference level = c.level ? *c.level : level_reference(set, c, o.fps);
+    const bool ramp = b.footing == eval::Footing::RampUp || b.footing == eval::Footing::RampDown;
+    bool measured = false;
     for (const eval::TerrainGroup& g : r.groups) {
-      if (g.footing != b.footing) continue;
+      if (g.footing != b.footing || (ramp && g.degrees != b.ramp_degrees)) continue;
+      measured = true;
       auto price = [&](const eval::Stat& s, Range range) {
         if (s.count == 0) return;
         cost += wt.bound * outside(s.mean, range) +
@@ -184,7 +188,26 @@ double condition_cost(const gait::ControllerSet& set, const TerrainCondition& c,
       price(g.hip_range, b.hip_range);
       price(g.cadence, b.cadence);
       cost += wt.bound * outside(g.toe_down_vs_level, b.toe_down_vs_level);
+      price(g.mid_stance_sole, b.mid_stance_sole);
+      if (g.step_length.count > 0) {
+        cost += wt.bound *
+                outside(100.0 * (g.step_length.mean / c.step_length - 1.0), b.step_error_percent);
+      }
+      if (ramp) {
+        // Shifts from the level walk, per degree of slope.
+        const double per = 1.0 / b.ramp_degrees;
+        cost += wt.bound *
+                (outside((g.hip.mean - level.hip) * per, b.hip_per_degree) +
+                 outside((g.knee.mean - level.knee) * per, b.knee_per_degree) +
+                 outside((g.mid_stance_ankle.mean - level.mid_stance_ankle) * per,
+                         b.mid_stance_ankle_per_degree) +
+                 outside((g.early_stance_knee.mean - level.early_stance_knee) * per,
+                         b.early_stance_knee_per_degree)) *
+                std::abs(b.ramp_degrees);
+      }
     }
+    // No steps on the ground the condition is for: the walk never got there.
+    if (!measured) cost += wt.missing_height;
     if (report) {
       char line[300];
       std::snprintf(line, sizeof line,
@@ -205,6 +228,46 @@ double condition_cost(const gait::ControllerSet& set, const TerrainCondition& c,
 
 TerrainBounds stair_ascent_bounds() {
   return {};
+}
+
+TerrainBounds ramp_bounds(int degrees) {
+  constexpr double kAny = 1e9;
+  TerrainBounds b;
+  b.footing = degrees >= 0 ? eval::Footing::RampUp : eval::Footing::RampDown;
+  b.ramp_degrees = degrees;
+  b.stance_percent = {55.0, 68.0};
+  b.hip = b.knee = b.peak_swing_knee = b.peak_swing_hip = {-kAny, kAny};
+  b.toe_down_vs_level = {-kAny, kAny};
+  b.cadence = {85.0, 130.0};
+  b.mid_stance_sole = {-5.0, 5.0};
+  b.step_error_percent = {-5.0, 5.0};
+  if (degrees > 0) {
+    b.hip_per_degree = {0.5, 1.5};
+    b.knee_per_degree = {0.5, 1.5};
+    b.mid_stance_ankle_per_degree = {0.6, 1.4};
+  } else {
+    // Per degree of a negative slope: the hip less flexed (a positive ratio), the early knee more
+    // (a negative one).
+    b.hip_per_degree = {0.1, 1.5};
+    b.early_stance_knee_per_degree = {-1.5, -0.1};
+  }
+  return b;
+}
+
+LevelReference level_reference(const gait::ControllerSet& set, const TerrainCondition& c,
+                               double fps) {
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::WalkerOptions options;
+  options.segments = rig::segments_from_stature(c.stature);
+  options.step_length = c.step_length;
+  gait::Walker walker(set, options, flat);
+  const eval::TerrainReport r = eval::evaluate_terrain(eval::record(walker, 8.0, fps), flat);
+  LevelReference level;
+  for (const eval::TerrainGroup& g : r.groups) {
+    if (g.footing != eval::Footing::Level) continue;
+    level = {g.hip.mean, g.knee.mean, g.mid_stance_ankle.mean, g.early_stance_knee.mean};
+  }
+  return level;
 }
 
 TerrainBounds stair_descent_bounds() {
@@ -260,8 +323,14 @@ double terrain_cost(const gait::ControllerSet& set, const TerrainTuneOptions& op
   return cost;
 }
 
-TerrainTuneResult tune_terrain(const gait::ControllerSet& start, const TerrainTuneOptions& o) {
-  validate(o, start);
+TerrainTuneResult tune_terrain(const gait::ControllerSet& start,
+                               const TerrainTuneOptions& options) {
+  validate(options, start);
+  // The level walks do not change with the terrain words: measured once.
+  TerrainTuneOptions o = options;
+  for (TerrainCondition& c : o.conditions) {
+    if (!c.level) c.level = level_reference(start, c, o.fps);
+  }
   const WordParameters parameters(start, o.words);
   TerrainTuneResult result;
   result.start_cost = terrain_cost(start, o);

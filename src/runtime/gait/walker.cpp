@@ -55,6 +55,9 @@ constexpr double kReflexSpeed = 10.0;
 // set's: ControllerSet::shortest_step.)
 constexpr double kLongestStep = 1.2;
 constexpr double kShortestTimeStep = 1e-5;
+// How far an edge may reach up to a landing foot's sole (m): a heel reaching over a tread shorter
+// than the foot lies on its nosing.
+constexpr double kEdgeUnderSole = 0.002;
 // How far a foot's heel and toes keep from a tread's edges (m).
 constexpr double kFootholdMargin = 0.005;
 // A swinging leg aims to land with its knee bent where its target lies more than this (m) within
@@ -996,7 +999,7 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
       FootGround ground = ground_under(*w.terrain_, p);
       const terrain::Terrain& t = *w.terrain_;
       const bool over_target =
-          t.run_at(p.ball.x) == l.target_run && !(ground.sole_corners >= 0.0) &&
+          t.run_at(p.ball.x) == l.target_run && !(ground.sole_corners >= kEdgeUnderSole) &&
           (t.run_at(p.heel.x) == l.target_run || t.run_at(l.target_x) != l.target_run);
       const bool arriving = (l.delta >= kLandingDelta && over_target) || w.state_.lead < 0 ||
                             w.state_.time - l.swing_start > kLongestSwing;
