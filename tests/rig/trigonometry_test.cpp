@@ -3,6 +3,8 @@
 // and the same bits on every machine (golden values).
 #include "runtime/rig/trigonometry.hpp"
 
+#include "runtime/simd/lanes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -91,6 +93,8 @@ TEST(Trigonometry, BatchGivesEachLaneTheScalarsBits) {
   }
   x[7] = -0.0;
   x[8] = kInf;
+  x[9] = -kInf;
+  x[10] = 4.9e-324;
   for (std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{7}, std::size_t{8},
                         std::size_t{13}, x.size()}) {
     std::vector<double> s(n + 1, 5.0);
@@ -101,6 +105,50 @@ TEST(Trigonometry, BatchGivesEachLaneTheScalarsBits) {
       const SinCos one = sin_cos(x[i]);
       EXPECT_EQ(std::bit_cast<std::uint64_t>(s[i]), std::bit_cast<std::uint64_t>(one.sin)) << x[i];
       EXPECT_EQ(std::bit_cast<std::uint64_t>(c[i]), std::bit_cast<std::uint64_t>(one.cos)) << x[i];
+    }
+  }
+}
+
+// The batch's lane kernel (AVX2 lanes in the batch above, where the machine has them) with the
+// scalar reference body: each lane the one-lane call's bits, and the lanes libm must answer
+// (|x| from kSinCosExactBelow on, infinities) reported rather than answered.
+TEST(Trigonometry, LaneKernelWithTheScalarBodyGivesEachLaneTheScalarsBits) {
+  using simd::scalar::Double4;
+  std::mt19937_64 random(9);
+  std::uniform_real_distribution<double> angle(-7.0, 7.0);
+  const double special[] = {0.0,
+                            -0.0,
+                            kNaN,
+                            kInf,
+                            -kInf,
+                            1e-30,
+                            -1e-300,
+                            4.9e-324,
+                            1.0e6,
+                            1.0e8,
+                            0x1p-27,
+                            -0x1p-27,
+                            0x1p-28,
+                            std::numbers::pi / 4,
+                            -std::numbers::pi / 2,
+                            999999.9};
+  std::vector<double> x(std::begin(special), std::end(special));
+  while (x.size() < 400)
+    x.push_back(angle(random));
+  for (std::size_t at = 0; at + 4 <= x.size(); at += 4) {
+    Double4 s;
+    Double4 c;
+    const Double4::Mask beyond = sin_cos_vector(Double4::load(&x[at]), s, c);
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double v = x[at + k];
+      const bool libm = std::abs(v) >= kSinCosExactBelow;
+      EXPECT_EQ(beyond.lane[k], libm) << v;
+      if (libm) continue;
+      const SinCos one = sin_cos(v);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(s.lane[k]), std::bit_cast<std::uint64_t>(one.sin))
+          << v;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(c.lane[k]), std::bit_cast<std::uint64_t>(one.cos))
+          << v;
     }
   }
 }

@@ -1,0 +1,540 @@
+// Lane types for fuzzygait's vector code: a vector of doubles (DoubleN), of 64-bit integers (IntN)
+// and a mask (MaskN, one per DoubleN), each with a plain scalar body, the reference, and a body per
+// instruction set. The vector code is written once against these operations, never against an
+// instruction set, and every body gives the scalar body's bits: each operation is the same IEEE
+// operation in each lane.
+//
+//   simd::scalar::{Double2, Double4, Int4}   always (loops over lanes)
+//   simd::sse2::Double2                      on x86-64 (SSE2 is part of it)
+//   simd::avx2::{Double4, Int4}              only in a translation unit compiled for AVX2
+//   simd::Double2                            sse2's where there is one, else scalar's
+//
+// Bodies live in their own namespaces so that no inline function is shared by translation units
+// compiled for different instruction sets: a linker keeps one copy of an inline function that was
+// not inlined, and an AVX2 copy chosen for baseline code would crash a machine without AVX2. A
+// translation unit compiled for AVX2 defines FUZZYGAIT_SIMD_ISA_TU before including this header;
+// it then sees the avx2 body alone, and it calls no other inline function (standard library ones
+// included) but the compiler's intrinsics. The build defines FUZZYGAIT_SIMD_SCALAR to keep the
+// scalar bodies only (CMake: -DFUZZYGAIT_SIMD=scalar), and FUZZYGAIT_SIMD_AVX2 where it compiles
+// AVX2 translation units (which run where simd::has_avx2()).
+//
+// Operations, the same in every body (D a DoubleN, I an IntN, M a MaskN; a double or an integer
+// converts to every lane):
+//   D(x), D(lane0, ...), D::load(p), store(p, d), I(n), I::load(p), store(p, i)
+//   D + - * / D, -D (the sign flipped), abs(D) (the sign cleared), compound assignments
+//   D == != < <= > >= D -> M with C++'s IEEE semantics (a NaN compares false, except with !=)
+//   M & M, M | M, !M, any(M), bits(M) (lane k in bit k), select(M, yes, no) for D and I
+//   I + - & | ^ I, I == I -> M, shift_left<n>(I), multiply_small<k>(I) (lanes in [0, 2^32))
+//   as_int(D) and as_double(I) (bit casts), as_int(M) (-1 where set, else 0)
+//   gather(base, I, M): base[index] where the mask is set, 0.0 elsewhere (no load there)
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzzygait/compiler.hpp"
+
+#if defined(FUZZYGAIT_SIMD_ISA_TU) && !defined(__AVX2__)
+#error "FUZZYGAIT_SIMD_ISA_TU: this translation unit must be compiled for AVX2 (see CMake)"
+#endif
+#if !defined(FUZZYGAIT_SIMD_ISA_TU)
+#include <bit>
+#include <cmath>
+#if !defined(FUZZYGAIT_SIMD_SCALAR) && (defined(__SSE2__) || defined(_M_X64))
+#define FUZZYGAIT_SIMD_HAVE_SSE2 1
+#include <emmintrin.h>
+#endif
+#endif
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
+namespace fuzzygait::simd {
+
+#if !defined(FUZZYGAIT_SIMD_ISA_TU)
+namespace scalar {
+
+template <std::size_t N>
+struct Masks {
+  static constexpr std::size_t kLanes = N;
+  bool lane[N];
+
+  friend Masks operator&(Masks a, Masks b) {
+    for (std::size_t k = 0; k < N; ++k)
+      a.lane[k] = a.lane[k] && b.lane[k];
+    return a;
+  }
+  friend Masks operator|(Masks a, Masks b) {
+    for (std::size_t k = 0; k < N; ++k)
+      a.lane[k] = a.lane[k] || b.lane[k];
+    return a;
+  }
+  friend Masks operator!(Masks a) {
+    for (std::size_t k = 0; k < N; ++k)
+      a.lane[k] = !a.lane[k];
+    return a;
+  }
+  friend bool any(Masks a) {
+    bool set = false;
+    for (std::size_t k = 0; k < N; ++k)
+      set = set || a.lane[k];
+    return set;
+  }
+  friend unsigned bits(Masks a) {
+    unsigned b = 0;
+    for (std::size_t k = 0; k < N; ++k)
+      b |= static_cast<unsigned>(a.lane[k]) << k;
+    return b;
+  }
+};
+
+template <std::size_t N>
+struct Ints {
+  static constexpr std::size_t kLanes = N;
+  using Mask = Masks<N>;
+  std::int64_t lane[N];
+
+  Ints() = default;
+  Ints(std::int64_t n) {  // every lane n
+    for (std::size_t k = 0; k < N; ++k)
+      lane[k] = n;
+  }
+  static Ints load(const std::int64_t* p) {
+    Ints r;
+    for (std::size_t k = 0; k < N; ++k)
+      r.lane[k] = p[k];
+    return r;
+  }
+  friend void store(std::int64_t* p, Ints a) {
+    for (std::size_t k = 0; k < N; ++k)
+      p[k] = a.lane[k];
+  }
+
+  // Modulo 2^64, as the vector bodies (and without signed overflow).
+  template <class Op>
+  static Ints each(Ints a, Ints b, Op op) {
+    for (std::size_t k = 0; k < N; ++k) {
+      a.lane[k] = static_cast<std::int64_t>(
+          op(static_cast<std::uint64_t>(a.lane[k]), static_cast<std::uint64_t>(b.lane[k])));
+    }
+    return a;
+  }
+  friend Ints operator+(Ints a, Ints b) {
+    return each(a, b, [](std::uint64_t x, std::uint64_t y) { return x + y; });
+  }
+  friend Ints operator-(Ints a, Ints b) {
+    return each(a, b, [](std::uint64_t x, std::uint64_t y) { return x - y; });
+  }
+  friend Ints operator&(Ints a, Ints b) {
+    return each(a, b, [](std::uint64_t x, std::uint64_t y) { return x & y; });
+  }
+  friend Ints operator|(Ints a, Ints b) {
+    return each(a, b, [](std::uint64_t x, std::uint64_t y) { return x | y; });
+  }
+  friend Ints operator^(Ints a, Ints b) {
+    return each(a, b, [](std::uint64_t x, std::uint64_t y) { return x ^ y; });
+  }
+  friend Mask operator==(Ints a, Ints b) {
+    Mask m;
+    for (std::size_t k = 0; k < N; ++k)
+      m.lane[k] = a.lane[k] == b.lane[k];
+    return m;
+  }
+  friend Ints select(Mask m, Ints yes, Ints no) {
+    for (std::size_t k = 0; k < N; ++k)
+      no.lane[k] = m.lane[k] ? yes.lane[k] : no.lane[k];
+    return no;
+  }
+};
+
+template <unsigned Shift, std::size_t N>
+Ints<N> shift_left(Ints<N> a) {
+  static_assert(Shift < 64);
+  for (std::size_t k = 0; k < N; ++k)
+    a.lane[k] = static_cast<std::int64_t>(static_cast<std::uint64_t>(a.lane[k]) << Shift);
+  return a;
+}
+template <std::uint32_t Factor, std::size_t N>
+Ints<N> multiply_small(Ints<N> a) {
+  for (std::size_t k = 0; k < N; ++k)
+    a.lane[k] = static_cast<std::int64_t>(static_cast<std::uint64_t>(a.lane[k]) * Factor);
+  return a;
+}
+template <std::size_t N>
+Ints<N> as_int(Masks<N> m) {
+  Ints<N> r;
+  for (std::size_t k = 0; k < N; ++k)
+    r.lane[k] = m.lane[k] ? -1 : 0;
+  return r;
+}
+
+template <std::size_t N>
+struct Doubles {
+  static constexpr std::size_t kLanes = N;
+  using Mask = Masks<N>;
+  using Int = Ints<N>;
+  double lane[N];
+
+  Doubles() = default;
+  Doubles(double x) {  // every lane x
+    for (std::size_t k = 0; k < N; ++k)
+      lane[k] = x;
+  }
+  Doubles(double lane0, double lane1) requires(N == 2) : lane{lane0, lane1} {}
+  Doubles(double lane0, double lane1, double lane2, double lane3) requires(N == 4)
+      : lane{lane0, lane1, lane2, lane3} {}
+  static Doubles load(const double* p) {
+    Doubles r;
+    for (std::size_t k = 0; k < N; ++k)
+      r.lane[k] = p[k];
+    return r;
+  }
+  friend void store(double* p, Doubles a) {
+    for (std::size_t k = 0; k < N; ++k)
+      p[k] = a.lane[k];
+  }
+
+  template <class Op>
+  static Doubles each(Doubles a, Doubles b, Op op) {
+    for (std::size_t k = 0; k < N; ++k)
+      a.lane[k] = op(a.lane[k], b.lane[k]);
+    return a;
+  }
+  template <class Op>
+  static Mask compare(Doubles a, Doubles b, Op op) {
+    Mask m;
+    for (std::size_t k = 0; k < N; ++k)
+      m.lane[k] = op(a.lane[k], b.lane[k]);
+    return m;
+  }
+  friend Doubles operator+(Doubles a, Doubles b) {
+    return each(a, b, [](double x, double y) { return x + y; });
+  }
+  friend Doubles operator-(Doubles a, Doubles b) {
+    return each(a, b, [](double x, double y) { return x - y; });
+  }
+  friend Doubles operator*(Doubles a, Doubles b) {
+    return each(a, b, [](double x, double y) { return x * y; });
+  }
+  friend Doubles operator/(Doubles a, Doubles b) {
+    return each(a, b, [](double x, double y) { return x / y; });
+  }
+  friend Doubles& operator+=(Doubles& a, Doubles b) { return a = a + b; }
+  friend Doubles& operator-=(Doubles& a, Doubles b) { return a = a - b; }
+  friend Doubles& operator*=(Doubles& a, Doubles b) { return a = a * b; }
+  friend Doubles& operator/=(Doubles& a, Doubles b) { return a = a / b; }
+  friend Doubles operator-(Doubles a) {
+    for (std::size_t k = 0; k < N; ++k)
+      a.lane[k] = -a.lane[k];
+    return a;
+  }
+  friend Doubles abs(Doubles a) {
+    for (std::size_t k = 0; k < N; ++k)
+      a.lane[k] = std::abs(a.lane[k]);
+    return a;
+  }
+  friend Mask operator==(Doubles a, Doubles b) {
+    return compare(a, b, [](double x, double y) { return x == y; });
+  }
+  friend Mask operator!=(Doubles a, Doubles b) {
+    return compare(a, b, [](double x, double y) { return x != y; });
+  }
+  friend Mask operator<(Doubles a, Doubles b) {
+    return compare(a, b, [](double x, double y) { return x < y; });
+  }
+  friend Mask operator<=(Doubles a, Doubles b) {
+    return compare(a, b, [](double x, double y) { return x <= y; });
+  }
+  friend Mask operator>(Doubles a, Doubles b) {
+    return compare(a, b, [](double x, double y) { return x > y; });
+  }
+  friend Mask operator>=(Doubles a, Doubles b) {
+    return compare(a, b, [](double x, double y) { return x >= y; });
+  }
+  friend Doubles select(Mask m, Doubles yes, Doubles no) {
+    for (std::size_t k = 0; k < N; ++k)
+      no.lane[k] = m.lane[k] ? yes.lane[k] : no.lane[k];
+    return no;
+  }
+  friend Int as_int(Doubles a) {
+    Int r;
+    for (std::size_t k = 0; k < N; ++k)
+      r.lane[k] = std::bit_cast<std::int64_t>(a.lane[k]);
+    return r;
+  }
+};
+
+template <std::size_t N>
+Doubles<N> gather(const double* base, Ints<N> index, Masks<N> m) {
+  Doubles<N> r(0.0);
+  for (std::size_t k = 0; k < N; ++k) {
+    if (m.lane[k]) r.lane[k] = base[index.lane[k]];
+  }
+  return r;
+}
+template <std::size_t N>
+Doubles<N> as_double(Ints<N> a) {
+  Doubles<N> r;
+  for (std::size_t k = 0; k < N; ++k)
+    r.lane[k] = std::bit_cast<double>(a.lane[k]);
+  return r;
+}
+
+using Mask2 = Masks<2>;
+using Mask4 = Masks<4>;
+using Int4 = Ints<4>;
+using Double2 = Doubles<2>;
+using Double4 = Doubles<4>;
+
+}  // namespace scalar
+#endif  // !FUZZYGAIT_SIMD_ISA_TU
+
+#if defined(FUZZYGAIT_SIMD_HAVE_SSE2)
+namespace sse2 {
+
+struct Mask2 {
+  static constexpr std::size_t kLanes = 2;
+  __m128d v;
+
+  friend FUZZYGAIT_ALWAYS_INLINE Mask2 operator&(Mask2 a, Mask2 b) {
+    return {_mm_and_pd(a.v, b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask2 operator|(Mask2 a, Mask2 b) { return {_mm_or_pd(a.v, b.v)}; }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask2 operator!(Mask2 a) {
+    return {_mm_xor_pd(a.v, _mm_castsi128_pd(_mm_set1_epi32(-1)))};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE unsigned bits(Mask2 a) {
+    return static_cast<unsigned>(_mm_movemask_pd(a.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE bool any(Mask2 a) { return _mm_movemask_pd(a.v) != 0; }
+};
+
+struct Double2 {
+  static constexpr std::size_t kLanes = 2;
+  using Mask = Mask2;
+  __m128d v;
+
+  Double2() = default;
+  FUZZYGAIT_ALWAYS_INLINE Double2(double x) : v(_mm_set1_pd(x)) {}  // every lane x
+  FUZZYGAIT_ALWAYS_INLINE Double2(double lane0, double lane1) : v(_mm_set_pd(lane1, lane0)) {}
+  FUZZYGAIT_ALWAYS_INLINE explicit Double2(__m128d x) : v(x) {}
+  static FUZZYGAIT_ALWAYS_INLINE Double2 load(const double* p) { return Double2(_mm_loadu_pd(p)); }
+  friend FUZZYGAIT_ALWAYS_INLINE void store(double* p, Double2 a) { _mm_storeu_pd(p, a.v); }
+
+  friend FUZZYGAIT_ALWAYS_INLINE Double2 operator+(Double2 a, Double2 b) {
+    return Double2(_mm_add_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double2 operator-(Double2 a, Double2 b) {
+    return Double2(_mm_sub_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double2 operator*(Double2 a, Double2 b) {
+    return Double2(_mm_mul_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double2 operator/(Double2 a, Double2 b) {
+    return Double2(_mm_div_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double2& operator+=(Double2& a, Double2 b) { return a = a + b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double2& operator-=(Double2& a, Double2 b) { return a = a - b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double2& operator*=(Double2& a, Double2 b) { return a = a * b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double2& operator/=(Double2& a, Double2 b) { return a = a / b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double2 operator-(Double2 a) {
+    return Double2(_mm_xor_pd(a.v, _mm_set1_pd(-0.0)));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double2 abs(Double2 a) {
+    return Double2(_mm_andnot_pd(_mm_set1_pd(-0.0), a.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator==(Double2 a, Double2 b) {
+    return {_mm_cmpeq_pd(a.v, b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator!=(Double2 a, Double2 b) {
+    return {_mm_cmpneq_pd(a.v, b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator<(Double2 a, Double2 b) {
+    return {_mm_cmplt_pd(a.v, b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator<=(Double2 a, Double2 b) {
+    return {_mm_cmple_pd(a.v, b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator>(Double2 a, Double2 b) {
+    return {_mm_cmpgt_pd(a.v, b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator>=(Double2 a, Double2 b) {
+    return {_mm_cmpge_pd(a.v, b.v)};
+  }
+  // Bitwise, as SSE2 has no blend: the masks' lanes are all ones or all zeros.
+  friend FUZZYGAIT_ALWAYS_INLINE Double2 select(Mask m, Double2 yes, Double2 no) {
+    return Double2(_mm_or_pd(_mm_and_pd(m.v, yes.v), _mm_andnot_pd(m.v, no.v)));
+  }
+};
+
+}  // namespace sse2
+#endif  // FUZZYGAIT_SIMD_HAVE_SSE2
+
+#if defined(__AVX2__)
+namespace avx2 {
+
+struct Mask4 {
+  static constexpr std::size_t kLanes = 4;
+  __m256d v;
+
+  friend FUZZYGAIT_ALWAYS_INLINE Mask4 operator&(Mask4 a, Mask4 b) {
+    return {_mm256_and_pd(a.v, b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask4 operator|(Mask4 a, Mask4 b) {
+    return {_mm256_or_pd(a.v, b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask4 operator!(Mask4 a) {
+    return {_mm256_xor_pd(a.v, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)))};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE unsigned bits(Mask4 a) {
+    return static_cast<unsigned>(_mm256_movemask_pd(a.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE bool any(Mask4 a) { return _mm256_movemask_pd(a.v) != 0; }
+};
+
+struct Int4 {
+  static constexpr std::size_t kLanes = 4;
+  using Mask = Mask4;
+  __m256i v;
+
+  Int4() = default;
+  FUZZYGAIT_ALWAYS_INLINE Int4(std::int64_t n) : v(_mm256_set1_epi64x(n)) {}  // every lane n
+  FUZZYGAIT_ALWAYS_INLINE explicit Int4(__m256i x) : v(x) {}
+  static FUZZYGAIT_ALWAYS_INLINE Int4 load(const std::int64_t* p) {
+    return Int4(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE void store(std::int64_t* p, Int4 a) {
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), a.v);
+  }
+
+  friend FUZZYGAIT_ALWAYS_INLINE Int4 operator+(Int4 a, Int4 b) {
+    return Int4(_mm256_add_epi64(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int4 operator-(Int4 a, Int4 b) {
+    return Int4(_mm256_sub_epi64(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int4 operator&(Int4 a, Int4 b) {
+    return Int4(_mm256_and_si256(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int4 operator|(Int4 a, Int4 b) {
+    return Int4(_mm256_or_si256(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int4 operator^(Int4 a, Int4 b) {
+    return Int4(_mm256_xor_si256(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator==(Int4 a, Int4 b) {
+    return {_mm256_castsi256_pd(_mm256_cmpeq_epi64(a.v, b.v))};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int4 select(Mask m, Int4 yes, Int4 no) {
+    return Int4(_mm256_castpd_si256(
+        _mm256_blendv_pd(_mm256_castsi256_pd(no.v), _mm256_castsi256_pd(yes.v), m.v)));
+  }
+};
+
+template <unsigned Shift>
+FUZZYGAIT_ALWAYS_INLINE Int4 shift_left(Int4 a) {
+  static_assert(Shift < 64);
+  return Int4(_mm256_slli_epi64(a.v, Shift));
+}
+// A power of two is a shift; any other factor multiplies the lanes' low 32 bits.
+template <std::uint32_t Factor>
+FUZZYGAIT_ALWAYS_INLINE Int4 multiply_small(Int4 a) {
+  if constexpr (Factor != 0 && (Factor & (Factor - 1)) == 0) {
+    constexpr int shift = [] {
+      int s = 0;
+      while ((std::uint32_t{1} << s) != Factor)
+        ++s;
+      return s;
+    }();
+    return Int4(_mm256_slli_epi64(a.v, shift));
+  } else {
+    return Int4(_mm256_mul_epu32(a.v, _mm256_set1_epi64x(Factor)));
+  }
+}
+FUZZYGAIT_ALWAYS_INLINE Int4 as_int(Mask4 m) {
+  return Int4(_mm256_castpd_si256(m.v));
+}
+
+struct Double4 {
+  static constexpr std::size_t kLanes = 4;
+  using Mask = Mask4;
+  using Int = Int4;
+  __m256d v;
+
+  Double4() = default;
+  FUZZYGAIT_ALWAYS_INLINE Double4(double x) : v(_mm256_set1_pd(x)) {}  // every lane x
+  FUZZYGAIT_ALWAYS_INLINE Double4(double lane0, double lane1, double lane2, double lane3)
+      : v(_mm256_set_pd(lane3, lane2, lane1, lane0)) {}
+  FUZZYGAIT_ALWAYS_INLINE explicit Double4(__m256d x) : v(x) {}
+  static FUZZYGAIT_ALWAYS_INLINE Double4 load(const double* p) {
+    return Double4(_mm256_loadu_pd(p));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE void store(double* p, Double4 a) { _mm256_storeu_pd(p, a.v); }
+
+  friend FUZZYGAIT_ALWAYS_INLINE Double4 operator+(Double4 a, Double4 b) {
+    return Double4(_mm256_add_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double4 operator-(Double4 a, Double4 b) {
+    return Double4(_mm256_sub_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double4 operator*(Double4 a, Double4 b) {
+    return Double4(_mm256_mul_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double4 operator/(Double4 a, Double4 b) {
+    return Double4(_mm256_div_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double4& operator+=(Double4& a, Double4 b) { return a = a + b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double4& operator-=(Double4& a, Double4 b) { return a = a - b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double4& operator*=(Double4& a, Double4 b) { return a = a * b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double4& operator/=(Double4& a, Double4 b) { return a = a / b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double4 operator-(Double4 a) {
+    return Double4(_mm256_xor_pd(a.v, _mm256_set1_pd(-0.0)));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double4 abs(Double4 a) {
+    return Double4(_mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v));
+  }
+  // C++'s comparisons: ordered (false with a NaN), except != (true with a NaN).
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator==(Double4 a, Double4 b) {
+    return {_mm256_cmp_pd(a.v, b.v, _CMP_EQ_OQ)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator!=(Double4 a, Double4 b) {
+    return {_mm256_cmp_pd(a.v, b.v, _CMP_NEQ_UQ)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator<(Double4 a, Double4 b) {
+    return {_mm256_cmp_pd(a.v, b.v, _CMP_LT_OS)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator<=(Double4 a, Double4 b) {
+    return {_mm256_cmp_pd(a.v, b.v, _CMP_LE_OS)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator>(Double4 a, Double4 b) {
+    return {_mm256_cmp_pd(a.v, b.v, _CMP_GT_OS)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator>=(Double4 a, Double4 b) {
+    return {_mm256_cmp_pd(a.v, b.v, _CMP_GE_OS)};
+  }
+  // A blend on each lane's top bit: the masks' lanes are all ones or all zeros.
+  friend FUZZYGAIT_ALWAYS_INLINE Double4 select(Mask m, Double4 yes, Double4 no) {
+    return Double4(_mm256_blendv_pd(no.v, yes.v, m.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int as_int(Double4 a) { return Int4(_mm256_castpd_si256(a.v)); }
+};
+
+FUZZYGAIT_ALWAYS_INLINE Double4 gather(const double* base, Int4 index, Mask4 m) {
+  return Double4(_mm256_mask_i64gather_pd(_mm256_setzero_pd(), base, index.v, m.v, 8));
+}
+FUZZYGAIT_ALWAYS_INLINE Double4 as_double(Int4 a) {
+  return Double4(_mm256_castsi256_pd(a.v));
+}
+
+}  // namespace avx2
+#endif  // __AVX2__
+
+#if !defined(FUZZYGAIT_SIMD_ISA_TU)
+#if defined(FUZZYGAIT_SIMD_HAVE_SSE2)
+using Double2 = sse2::Double2;
+#else
+using Double2 = scalar::Double2;
+#endif
+#endif
+
+}  // namespace fuzzygait::simd
