@@ -55,12 +55,14 @@ FUZZYGAIT_ALWAYS_INLINE LaneDegrees<D> lane_degrees(const double* knots, std::si
   LaneDegrees<D> d;
   d.lower_degree = select(x - left < tolerance, D(1.0), (right - x) / (right - left));
   d.upper_degree = select(right - x < tolerance, D(1.0), (x - left) / (right - left));
-  const typename D::Mask below = !(x > D(knots[0]));
-  const typename D::Mask above = !(x < D(knots[count - 1]));
-  d.lower_degree = select(below | above, D(1.0), d.lower_degree);
-  d.upper_degree = select(below | above, D(0.0), d.upper_degree);
-  d.lower = select(above, Int(static_cast<std::int64_t>(count - 1)), i);
-  d.lower = select(below, Int(0), d.lower);
+  // Outside (or at the ends of) the knots, or NaN: the first or last term alone.
+  const typename D::Mask above_first = x > D(knots[0]);
+  const typename D::Mask below_last = x < D(knots[count - 1]);
+  const typename D::Mask inside = above_first & below_last;
+  d.lower_degree = select(inside, d.lower_degree, D(1.0));
+  d.upper_degree = select(inside, d.upper_degree, D(0.0));
+  d.lower = select(below_last, i, Int(static_cast<std::int64_t>(count - 1)));
+  d.lower = select(above_first, d.lower, Int(0));
   return d;
 }
 
@@ -85,22 +87,23 @@ FUZZYGAIT_ALWAYS_INLINE D lane_minimum(D a, D b) {
 // out[i] = the controller at (x0[i], x1[i]) for i < n, n a multiple of D::kLanes. x1 is not read
 // for one input.
 template <class D>
-void evaluate_packed_lanes(const PackedView& p, const double* x0, const double* x1, double* out,
+void evaluate_packed_lanes(const PackedView& view, const double* x0, const double* x1, double* out,
                            std::size_t n) {
   using Int = typename D::Int;
+  const PackedView p = view;  // a copy, which the stores to out cannot change
   const D tolerance(p.tolerance);
   for (std::size_t at = 0; at < n; at += D::kLanes) {
     const D a = D::load(x0 + at);
     const LaneDegrees<D> da = lane_degrees(p.knots[0], p.counts[0], a, tolerance);
     D sum(0.0);
     D weights(0.0);
-    typename D::Mask nan = a != a;
+    typename D::Mask ordered = a == a;  // not NaN
     if (p.shape == PackedShape::OneInput) {
       lane_fire(da.lower_degree, da.lower, p.consequents, tolerance, sum, weights);
       lane_fire(da.upper_degree, da.lower + 1, p.consequents, tolerance, sum, weights);
     } else {
       const D b = D::load(x1 + at);
-      nan = nan | (b != b);
+      ordered = ordered & (b == b);
       const LaneDegrees<D> db = lane_degrees(p.knots[1], p.counts[1], b, tolerance);
       const Int rule = multiply_small<kPackedRowStride>(da.lower) + db.lower;
       const Int stride(kPackedRowStride);
@@ -121,7 +124,7 @@ void evaluate_packed_lanes(const PackedView& p, const double* x0, const double* 
       }
     }
     const D average = sum / weights;
-    const typename D::Mask defined = (weights > D(0.0)) & !nan;
+    const typename D::Mask defined = (weights > D(0.0)) & ordered;
     store(out + at, select(defined, average, D(p.default_value)));
   }
 }

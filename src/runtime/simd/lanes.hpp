@@ -289,24 +289,55 @@ using Double4 = Doubles<4>;
 }  // namespace scalar
 #endif  // !FUZZYGAIT_SIMD_ISA_TU
 
+#if defined(FUZZYGAIT_SIMD_HAVE_SSE2) || defined(__AVX2__)
+// The comparisons of the x86 bodies. GCC and Clang compare as their generic vector operations,
+// which their optimisers know yield masks and so fold into the selects and bit operations that use
+// them (GCC's comparison intrinsics are opaque to it, and a blend on such a mask cost an extra
+// instruction); MSVC takes the intrinsics. The same instructions either way. Bit operations go
+// through the integer intrinsics, which GCC also treats as generic operations.
+enum class Compare { Equal, NotEqual, Less, LessEqual, Greater, GreaterEqual };
+#endif
+
 #if defined(FUZZYGAIT_SIMD_HAVE_SSE2)
 namespace sse2 {
 
+template <Compare C>
+FUZZYGAIT_ALWAYS_INLINE __m128i compare(__m128d a, __m128d b) {
+#if defined(__GNUC__)
+  if constexpr (C == Compare::Equal) return reinterpret_cast<__m128i>(a == b);
+  if constexpr (C == Compare::NotEqual) return reinterpret_cast<__m128i>(a != b);
+  if constexpr (C == Compare::Less) return reinterpret_cast<__m128i>(a < b);
+  if constexpr (C == Compare::LessEqual) return reinterpret_cast<__m128i>(a <= b);
+  if constexpr (C == Compare::Greater) return reinterpret_cast<__m128i>(a > b);
+  if constexpr (C == Compare::GreaterEqual) return reinterpret_cast<__m128i>(a >= b);
+#else
+  if constexpr (C == Compare::Equal) return _mm_castpd_si128(_mm_cmpeq_pd(a, b));
+  if constexpr (C == Compare::NotEqual) return _mm_castpd_si128(_mm_cmpneq_pd(a, b));
+  if constexpr (C == Compare::Less) return _mm_castpd_si128(_mm_cmplt_pd(a, b));
+  if constexpr (C == Compare::LessEqual) return _mm_castpd_si128(_mm_cmple_pd(a, b));
+  if constexpr (C == Compare::Greater) return _mm_castpd_si128(_mm_cmpgt_pd(a, b));
+  if constexpr (C == Compare::GreaterEqual) return _mm_castpd_si128(_mm_cmpge_pd(a, b));
+#endif
+}
+
+// Lanes of all ones (set) or all zeros.
 struct Mask2 {
   static constexpr std::size_t kLanes = 2;
-  __m128d v;
+  __m128i v;
 
   friend FUZZYGAIT_ALWAYS_INLINE Mask2 operator&(Mask2 a, Mask2 b) {
-    return {_mm_and_pd(a.v, b.v)};
+    return {_mm_and_si128(a.v, b.v)};
   }
-  friend FUZZYGAIT_ALWAYS_INLINE Mask2 operator|(Mask2 a, Mask2 b) { return {_mm_or_pd(a.v, b.v)}; }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask2 operator|(Mask2 a, Mask2 b) {
+    return {_mm_or_si128(a.v, b.v)};
+  }
   friend FUZZYGAIT_ALWAYS_INLINE Mask2 operator!(Mask2 a) {
-    return {_mm_xor_pd(a.v, _mm_castsi128_pd(_mm_set1_epi32(-1)))};
+    return {_mm_xor_si128(a.v, _mm_set1_epi32(-1))};
   }
   friend FUZZYGAIT_ALWAYS_INLINE unsigned bits(Mask2 a) {
-    return static_cast<unsigned>(_mm_movemask_pd(a.v));
+    return static_cast<unsigned>(_mm_movemask_pd(_mm_castsi128_pd(a.v)));
   }
-  friend FUZZYGAIT_ALWAYS_INLINE bool any(Mask2 a) { return _mm_movemask_pd(a.v) != 0; }
+  friend FUZZYGAIT_ALWAYS_INLINE bool any(Mask2 a) { return bits(a) != 0; }
 };
 
 struct Double2 {
@@ -337,33 +368,38 @@ struct Double2 {
   friend FUZZYGAIT_ALWAYS_INLINE Double2& operator-=(Double2& a, Double2 b) { return a = a - b; }
   friend FUZZYGAIT_ALWAYS_INLINE Double2& operator*=(Double2& a, Double2 b) { return a = a * b; }
   friend FUZZYGAIT_ALWAYS_INLINE Double2& operator/=(Double2& a, Double2 b) { return a = a / b; }
+  // Sign bits flipped or cleared as integers (which a compiler folds into constants).
   friend FUZZYGAIT_ALWAYS_INLINE Double2 operator-(Double2 a) {
-    return Double2(_mm_xor_pd(a.v, _mm_set1_pd(-0.0)));
+    return Double2(_mm_castsi128_pd(
+        _mm_xor_si128(_mm_castpd_si128(a.v), _mm_set1_epi64x(std::int64_t{-1} << 63))));
   }
   friend FUZZYGAIT_ALWAYS_INLINE Double2 abs(Double2 a) {
-    return Double2(_mm_andnot_pd(_mm_set1_pd(-0.0), a.v));
+    return Double2(_mm_castsi128_pd(
+        _mm_and_si128(_mm_castpd_si128(a.v), _mm_set1_epi64x(~(std::int64_t{-1} << 63)))));
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator==(Double2 a, Double2 b) {
-    return {_mm_cmpeq_pd(a.v, b.v)};
+    return {compare<Compare::Equal>(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator!=(Double2 a, Double2 b) {
-    return {_mm_cmpneq_pd(a.v, b.v)};
+    return {compare<Compare::NotEqual>(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator<(Double2 a, Double2 b) {
-    return {_mm_cmplt_pd(a.v, b.v)};
+    return {compare<Compare::Less>(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator<=(Double2 a, Double2 b) {
-    return {_mm_cmple_pd(a.v, b.v)};
+    return {compare<Compare::LessEqual>(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator>(Double2 a, Double2 b) {
-    return {_mm_cmpgt_pd(a.v, b.v)};
+    return {compare<Compare::Greater>(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator>=(Double2 a, Double2 b) {
-    return {_mm_cmpge_pd(a.v, b.v)};
+    return {compare<Compare::GreaterEqual>(a.v, b.v)};
   }
-  // Bitwise, as SSE2 has no blend: the masks' lanes are all ones or all zeros.
+  // Bitwise, as SSE2 has no blend.
   friend FUZZYGAIT_ALWAYS_INLINE Double2 select(Mask m, Double2 yes, Double2 no) {
-    return Double2(_mm_or_pd(_mm_and_pd(m.v, yes.v), _mm_andnot_pd(m.v, no.v)));
+    const __m128i kept = _mm_and_si128(m.v, _mm_castpd_si128(yes.v));
+    const __m128i other = _mm_and_si128((!m).v, _mm_castpd_si128(no.v));
+    return Double2(_mm_castsi128_pd(_mm_or_si128(kept, other)));
   }
 };
 
@@ -373,23 +409,50 @@ struct Double2 {
 #if defined(__AVX2__)
 namespace avx2 {
 
+template <Compare C>
+FUZZYGAIT_ALWAYS_INLINE __m256i compare(__m256d a, __m256d b) {
+#if defined(__GNUC__)
+  if constexpr (C == Compare::Equal) return reinterpret_cast<__m256i>(a == b);
+  if constexpr (C == Compare::NotEqual) return reinterpret_cast<__m256i>(a != b);
+  if constexpr (C == Compare::Less) return reinterpret_cast<__m256i>(a < b);
+  if constexpr (C == Compare::LessEqual) return reinterpret_cast<__m256i>(a <= b);
+  if constexpr (C == Compare::Greater) return reinterpret_cast<__m256i>(a > b);
+  if constexpr (C == Compare::GreaterEqual) return reinterpret_cast<__m256i>(a >= b);
+#else
+  // C++'s comparisons: ordered (false with a NaN), except != (true with a NaN).
+  if constexpr (C == Compare::Equal) return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_EQ_OQ));
+  if constexpr (C == Compare::NotEqual) {
+    return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_NEQ_UQ));
+  }
+  if constexpr (C == Compare::Less) return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_LT_OS));
+  if constexpr (C == Compare::LessEqual) {
+    return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_LE_OS));
+  }
+  if constexpr (C == Compare::Greater) return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_GT_OS));
+  if constexpr (C == Compare::GreaterEqual) {
+    return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_GE_OS));
+  }
+#endif
+}
+
+// Lanes of all ones (set) or all zeros.
 struct Mask4 {
   static constexpr std::size_t kLanes = 4;
-  __m256d v;
+  __m256i v;
 
   friend FUZZYGAIT_ALWAYS_INLINE Mask4 operator&(Mask4 a, Mask4 b) {
-    return {_mm256_and_pd(a.v, b.v)};
+    return {_mm256_and_si256(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask4 operator|(Mask4 a, Mask4 b) {
-    return {_mm256_or_pd(a.v, b.v)};
+    return {_mm256_or_si256(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask4 operator!(Mask4 a) {
-    return {_mm256_xor_pd(a.v, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)))};
+    return {_mm256_xor_si256(a.v, _mm256_set1_epi64x(-1))};
   }
   friend FUZZYGAIT_ALWAYS_INLINE unsigned bits(Mask4 a) {
-    return static_cast<unsigned>(_mm256_movemask_pd(a.v));
+    return static_cast<unsigned>(_mm256_movemask_pd(_mm256_castsi256_pd(a.v)));
   }
-  friend FUZZYGAIT_ALWAYS_INLINE bool any(Mask4 a) { return _mm256_movemask_pd(a.v) != 0; }
+  friend FUZZYGAIT_ALWAYS_INLINE bool any(Mask4 a) { return bits(a) != 0; }
 };
 
 struct Int4 {
@@ -423,11 +486,12 @@ struct Int4 {
     return Int4(_mm256_xor_si256(a.v, b.v));
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator==(Int4 a, Int4 b) {
-    return {_mm256_castsi256_pd(_mm256_cmpeq_epi64(a.v, b.v))};
+    return {_mm256_cmpeq_epi64(a.v, b.v)};
   }
+  // A blend on each lane's top bit (a mask's lanes are all ones or all zeros).
   friend FUZZYGAIT_ALWAYS_INLINE Int4 select(Mask m, Int4 yes, Int4 no) {
-    return Int4(_mm256_castpd_si256(
-        _mm256_blendv_pd(_mm256_castsi256_pd(no.v), _mm256_castsi256_pd(yes.v), m.v)));
+    return Int4(_mm256_castpd_si256(_mm256_blendv_pd(
+        _mm256_castsi256_pd(no.v), _mm256_castsi256_pd(yes.v), _mm256_castsi256_pd(m.v))));
   }
 };
 
@@ -452,7 +516,7 @@ FUZZYGAIT_ALWAYS_INLINE Int4 multiply_small(Int4 a) {
   }
 }
 FUZZYGAIT_ALWAYS_INLINE Int4 as_int(Mask4 m) {
-  return Int4(_mm256_castpd_si256(m.v));
+  return Int4(m.v);
 }
 
 struct Double4 {
@@ -487,40 +551,43 @@ struct Double4 {
   friend FUZZYGAIT_ALWAYS_INLINE Double4& operator-=(Double4& a, Double4 b) { return a = a - b; }
   friend FUZZYGAIT_ALWAYS_INLINE Double4& operator*=(Double4& a, Double4 b) { return a = a * b; }
   friend FUZZYGAIT_ALWAYS_INLINE Double4& operator/=(Double4& a, Double4 b) { return a = a / b; }
+  // Sign bits flipped or cleared as integers (which a compiler folds into constants).
   friend FUZZYGAIT_ALWAYS_INLINE Double4 operator-(Double4 a) {
-    return Double4(_mm256_xor_pd(a.v, _mm256_set1_pd(-0.0)));
+    return Double4(_mm256_castsi256_pd(
+        _mm256_xor_si256(_mm256_castpd_si256(a.v), _mm256_set1_epi64x(std::int64_t{-1} << 63))));
   }
   friend FUZZYGAIT_ALWAYS_INLINE Double4 abs(Double4 a) {
-    return Double4(_mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v));
+    return Double4(_mm256_castsi256_pd(
+        _mm256_and_si256(_mm256_castpd_si256(a.v), _mm256_set1_epi64x(~(std::int64_t{-1} << 63)))));
   }
-  // C++'s comparisons: ordered (false with a NaN), except != (true with a NaN).
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator==(Double4 a, Double4 b) {
-    return {_mm256_cmp_pd(a.v, b.v, _CMP_EQ_OQ)};
+    return {compare<Compare::Equal>(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator!=(Double4 a, Double4 b) {
-    return {_mm256_cmp_pd(a.v, b.v, _CMP_NEQ_UQ)};
+    return {compare<Compare::NotEqual>(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator<(Double4 a, Double4 b) {
-    return {_mm256_cmp_pd(a.v, b.v, _CMP_LT_OS)};
+    return {compare<Compare::Less>(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator<=(Double4 a, Double4 b) {
-    return {_mm256_cmp_pd(a.v, b.v, _CMP_LE_OS)};
+    return {compare<Compare::LessEqual>(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator>(Double4 a, Double4 b) {
-    return {_mm256_cmp_pd(a.v, b.v, _CMP_GT_OS)};
+    return {compare<Compare::Greater>(a.v, b.v)};
   }
   friend FUZZYGAIT_ALWAYS_INLINE Mask operator>=(Double4 a, Double4 b) {
-    return {_mm256_cmp_pd(a.v, b.v, _CMP_GE_OS)};
+    return {compare<Compare::GreaterEqual>(a.v, b.v)};
   }
-  // A blend on each lane's top bit: the masks' lanes are all ones or all zeros.
+  // A blend on each lane's top bit (a mask's lanes are all ones or all zeros).
   friend FUZZYGAIT_ALWAYS_INLINE Double4 select(Mask m, Double4 yes, Double4 no) {
-    return Double4(_mm256_blendv_pd(no.v, yes.v, m.v));
+    return Double4(_mm256_blendv_pd(no.v, yes.v, _mm256_castsi256_pd(m.v)));
   }
   friend FUZZYGAIT_ALWAYS_INLINE Int as_int(Double4 a) { return Int4(_mm256_castpd_si256(a.v)); }
 };
 
 FUZZYGAIT_ALWAYS_INLINE Double4 gather(const double* base, Int4 index, Mask4 m) {
-  return Double4(_mm256_mask_i64gather_pd(_mm256_setzero_pd(), base, index.v, m.v, 8));
+  return Double4(
+      _mm256_mask_i64gather_pd(_mm256_setzero_pd(), base, index.v, _mm256_castsi256_pd(m.v), 8));
 }
 FUZZYGAIT_ALWAYS_INLINE Double4 as_double(Int4 a) {
   return Double4(_mm256_castsi256_pd(a.v));
