@@ -28,14 +28,17 @@ set_property(CACHE FUZZYGAIT_SIMD PROPERTY STRINGS auto scalar)
 if(NOT FUZZYGAIT_SIMD MATCHES "^(auto|scalar)$")
   message(FATAL_ERROR "FUZZYGAIT_SIMD must be auto or scalar, not '${FUZZYGAIT_SIMD}'")
 endif()
-# The flag of the AVX2 translation units, empty where there are none.
+# The flags of the AVX2 and AVX-512F translation units, empty where there are none.
 set(FUZZYGAIT_AVX2_FLAG "")
+set(FUZZYGAIT_AVX512_FLAG "")
 if(FUZZYGAIT_SIMD STREQUAL "auto" AND CMAKE_SIZEOF_VOID_P EQUAL 8 AND
    CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64|x64)$")
   if(MSVC)
     set(FUZZYGAIT_AVX2_FLAG /arch:AVX2)
+    set(FUZZYGAIT_AVX512_FLAG /arch:AVX512)
   elseif(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     set(FUZZYGAIT_AVX2_FLAG -mavx2)
+    set(FUZZYGAIT_AVX512_FLAG -mavx512f)
   endif()
 endif()
 

@@ -1,6 +1,7 @@
-// Every operation of the lane types (src/runtime/simd/lanes.hpp) applied to four lanes of inputs,
+// Every operation of the lane types (src/runtime/simd/lanes.hpp) applied to eight lanes of inputs,
 // written once over a body, so that a test compares each body with the scalar one. Includes only
-// lanes.hpp and the standard library: lanes_avx2.cpp, compiled for AVX2, instantiates it too.
+// lanes.hpp and the standard library: lanes_avx2.cpp and lanes_avx512.cpp, compiled for those
+// instruction sets, instantiate it too.
 #pragma once
 
 #include <cstddef>
@@ -10,7 +11,7 @@
 
 namespace fuzzygait::simd::test {
 
-inline constexpr std::size_t kLanes = 4;
+inline constexpr std::size_t kLanes = 8;
 
 // Where a[k] < b[k], index[k] is in [0, kTableSize); elsewhere it lies far past the table, which a
 // masked gather must not read. small[k] is in [0, 2^32) (multiply_small's lanes).
@@ -143,7 +144,7 @@ void apply_lane_ops(const LaneInputs& in, std::size_t first, LaneResults& out) {
   }
 }
 
-// The four lanes through body D (two calls for a pair).
+// The eight lanes through body D (four calls for a pair).
 template <class D>
 void apply_lane_ops(const LaneInputs& in, LaneResults& out) {
   out = LaneResults{};
@@ -152,7 +153,8 @@ void apply_lane_ops(const LaneInputs& in, LaneResults& out) {
 }
 
 // apply_lane_ops with simd::avx2::Double4 (lanes_avx2.cpp, compiled for AVX2): only where
-// simd::has_avx2().
+// simd::has_avx2(); with simd::avx512::Double8 (lanes_avx512.cpp) only where simd::has_avx512().
 void apply_avx2_lane_ops(const LaneInputs& in, LaneResults& out);
+void apply_avx512_lane_ops(const LaneInputs& in, LaneResults& out);
 
 }  // namespace fuzzygait::simd::test

@@ -1,5 +1,5 @@
 // The AVX2 body's side of lanes_test.cpp, compiled for AVX2.
-#define FUZZYGAIT_SIMD_ISA_TU 1
+#define FUZZYGAIT_SIMD_AVX2_TU 1
 #include "simd/lane_ops.hpp"
 
 namespace fuzzygait::simd::test {

@@ -1,8 +1,8 @@
 // The lane types (src/runtime/simd/lanes.hpp): the scalar body is C++'s own arithmetic lane by
-// lane, and every other body this build and machine have (SSE2 pairs, AVX2 from lanes_avx2.cpp)
-// gives the scalar body's bits for every operation, with NaN, infinities, signed zeros, denormals
-// and the extremes of the integers among the inputs. (A NaN equals any NaN: payloads carry no
-// meaning here.)
+// lane, and every other body this build and machine have (SSE2 pairs, AVX2 and AVX-512 from
+// lanes_avx2.cpp and lanes_avx512.cpp) gives the scalar body's bits for every operation, with NaN,
+// infinities, signed zeros, denormals and the extremes of the integers among the inputs. (A NaN
+// equals any NaN: payloads carry no meaning here.)
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -237,6 +237,18 @@ TEST(Lanes, WithoutSse2ThePairIsTheScalarOne) {
 }
 #endif
 
+TEST(Lanes, ScalarOctetsGiveTheScalarBodysBits) {
+  int reported = 0;
+  for (const LaneInputs& in : lane_inputs()) {
+    LaneResults reference;
+    apply_lane_ops<scalar::Double4>(in, reference);
+    LaneResults octets;
+    apply_lane_ops<scalar::Double8>(in, octets);
+    expect_same_results("scalar::Double8", in, octets, reference, reported);
+  }
+  EXPECT_EQ(reported, 0);
+}
+
 TEST(Lanes, Avx2GivesTheScalarBodysBits) {
 #if defined(FUZZYGAIT_SIMD_AVX2)
   if (!has_avx2()) GTEST_SKIP() << "this machine has no AVX2";
@@ -255,25 +267,51 @@ TEST(Lanes, Avx2GivesTheScalarBodysBits) {
 #endif
 }
 
-// has_avx2() against the processor's flags as Linux reports them (elsewhere skipped).
-TEST(Lanes, HasAvx2IsWhatTheProcessorReports) {
+TEST(Lanes, Avx512GivesTheScalarBodysBits) {
+#if defined(FUZZYGAIT_SIMD_AVX512)
+  if (!has_avx512()) GTEST_SKIP() << "this machine has no AVX-512F";
+  int reported = 0;
+  for (const LaneInputs& in : lane_inputs()) {
+    LaneResults reference;
+    apply_lane_ops<scalar::Double4>(in, reference);
+    LaneResults avx512;
+    apply_avx512_lane_ops(in, avx512);
+    EXPECT_TRUE(avx512.has_ints);
+    expect_same_results("avx512::Double8", in, avx512, reference, reported);
+  }
+  EXPECT_EQ(reported, 0);
+#else
+  GTEST_SKIP() << "this build has no AVX-512 bodies";
+#endif
+}
+
+// has_avx2() and has_avx512() against the processor's flags as Linux reports them (elsewhere
+// skipped).
+TEST(Lanes, CpuChecksAgreeWithTheProcessorsFlags) {
   std::ifstream cpuinfo("/proc/cpuinfo");
   std::string line;
-  bool flags_found = false;
-  bool avx2 = false;
+  std::string flags;
   while (std::getline(cpuinfo, line)) {
-    if (line.rfind("flags", 0) != 0) continue;
-    flags_found = true;
-    avx2 = (line + " ").find(" avx2 ") != std::string::npos;
-    break;
+    if (line.rfind("flags", 0) == 0) {
+      flags = line + " ";
+      break;
+    }
   }
-  if (!flags_found) GTEST_SKIP() << "no x86 flags in /proc/cpuinfo";
+  if (flags.empty()) GTEST_SKIP() << "no x86 flags in /proc/cpuinfo";
+  const bool avx2 = flags.find(" avx2 ") != std::string::npos;
+  const bool avx512 = flags.find(" avx512f ") != std::string::npos;
 #if defined(FUZZYGAIT_SIMD_AVX2)
   EXPECT_EQ(has_avx2(), avx2);
 #else
   EXPECT_FALSE(has_avx2()) << "a build without AVX2 bodies never runs them";
 #endif
+#if defined(FUZZYGAIT_SIMD_AVX512)
+  EXPECT_EQ(has_avx512(), avx512);
+#else
+  EXPECT_FALSE(has_avx512()) << "a build without AVX-512 bodies never runs them";
+#endif
   RecordProperty("has_avx2", has_avx2() ? "yes" : "no");
+  RecordProperty("has_avx512", has_avx512() ? "yes" : "no");
 }
 
 }  // namespace

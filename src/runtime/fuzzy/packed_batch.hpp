@@ -1,5 +1,5 @@
 // PackedPartition's batch evaluation, a crowd's characters through one controller at once, and
-// how this machine runs it: in AVX2 vectors where simd::has_avx2(), else one call at a time.
+// how this machine runs it: in the widest vectors it has (AVX-512F, AVX2), else one call at a time.
 // Internal to fuzzygait (not installed).
 #pragma once
 
@@ -10,24 +10,25 @@
 
 namespace fuzzygait::fuzzy::detail {
 
-// The lanes of one vector of the batch.
-inline constexpr std::size_t kBatchVectorLanes = 4;
+// The lanes of the widest vector the batch may use.
+inline constexpr std::size_t kMaxBatchVectorLanes = 8;
 
-// Whether the batch runs in vector lanes on this machine.
-bool batch_in_vectors();
+// The lanes of the widest vector the batch uses on this machine: 8 (AVX-512F), 4 (AVX2) or 1 (no
+// vectors, one call at a time).
+std::size_t batch_vector_lanes();
 
-// How many lanes to give the batch for n: with vectors, n rounded up to a multiple of
-// kBatchVectorLanes (the last few lanes would otherwise go one by one, at more cost than a padded
-// vector whose extra outputs the caller leaves unread), else n. A caller may pass this only where
-// its arrays have room for it.
+// How many lanes to give the batch for n: n rounded up to a multiple of batch_vector_lanes() (the
+// last few lanes would otherwise go one by one, at more cost than a padded vector whose extra
+// outputs the caller leaves unread). A caller may pass this only where its arrays have room for
+// it.
 inline std::size_t padded_lanes(std::size_t n) {
-  return batch_in_vectors() ? (n + kBatchVectorLanes - 1) / kBatchVectorLanes * kBatchVectorLanes
-                            : n;
+  const std::size_t width = batch_vector_lanes();
+  return (n + width - 1) / width * width;
 }
 
-// out[i] = p.evaluate(x0[i], x1[i]) for i < n, bit for bit: whole vectors in lanes, the rest (and
-// all of it without vectors) by the scalar evaluate(). x1 is not read for a one-input controller
-// (it may then be null).
+// out[i] = p.evaluate(x0[i], x1[i]) for i < n, bit for bit: whole vectors in lanes (the widest
+// first), the rest (and all of it without vectors) by the scalar evaluate(). x1 is not read for a
+// one-input controller (it may then be null).
 void evaluate_batch(const PackedPartition& p, const double* x0, const double* x1, double* out,
                     std::size_t n);
 

@@ -133,5 +133,9 @@ void evaluate_packed_lanes(const PackedView& view, const double* x0, const doubl
 // where simd::has_avx2(), and n a multiple of 4.
 void evaluate_packed_avx2(const PackedView& p, const double* x0, const double* x1, double* out,
                           std::size_t n);
+// With simd::avx512::Double8 (packed_lanes_avx512.cpp): only where simd::has_avx512(), and n a
+// multiple of 8.
+void evaluate_packed_avx512(const PackedView& p, const double* x0, const double* x1, double* out,
+                            std::size_t n);
 
 }  // namespace fuzzygait::fuzzy::detail

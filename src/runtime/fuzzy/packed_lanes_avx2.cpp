@@ -1,7 +1,7 @@
 // The packed controllers' batch kernel for AVX2: compiled for AVX2 (see src/runtime/CMakeLists.txt)
 // and run only where simd::has_avx2(). Includes nothing but packed_lanes.hpp (lanes.hpp and the
 // standard library), so that no inline function compiled here is shared with baseline code.
-#define FUZZYGAIT_SIMD_ISA_TU 1
+#define FUZZYGAIT_SIMD_AVX2_TU 1
 #include "runtime/fuzzy/packed_lanes.hpp"
 
 namespace fuzzygait::fuzzy::detail {

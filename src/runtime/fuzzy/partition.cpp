@@ -223,23 +223,32 @@ detail::PackedView detail::PackedPartitionAccess::view(const PackedPartition& p)
   return v;
 }
 
-bool detail::batch_in_vectors() {
-  return simd::has_avx2();
+std::size_t detail::batch_vector_lanes() {
+  if (simd::has_avx512()) return 8;
+  if (simd::has_avx2()) return 4;
+  return 1;
 }
 
 void detail::evaluate_batch(const PackedPartition& p, const double* x0, const double* x1,
                             double* out, std::size_t n) {
   const PackedView view = PackedPartitionAccess::view(p);
+  const bool one_input = view.shape == PackedShape::OneInput;
   std::size_t done = 0;
+  // Whole vectors of the lanes [done, done + count).
+  auto in_vectors = [&](std::size_t width, auto kernel) {
+    const std::size_t count = (n - done) / width * width;
+    if (count == 0) return;
+    kernel(view, x0 + done, one_input ? nullptr : x1 + done, out + done, count);
+    done += count;
+  };
+#if defined(FUZZYGAIT_SIMD_AVX512)
+  if (simd::has_avx512()) in_vectors(8, evaluate_packed_avx512);
+#endif
 #if defined(FUZZYGAIT_SIMD_AVX2)
-  if (simd::has_avx2()) {
-    done = n - n % kBatchVectorLanes;
-    evaluate_packed_avx2(view, x0, x1, out, done);
-  }
+  if (simd::has_avx2()) in_vectors(4, evaluate_packed_avx2);
 #endif
   // The remaining lanes, and every lane without vectors: the scalar path is faster than the
   // lanes' selects one at a time.
-  const bool one_input = view.shape == PackedShape::OneInput;
   for (std::size_t i = done; i < n; ++i)
     out[i] = p.evaluate(x0[i], one_input ? 0.0 : x1[i]);
 }

@@ -123,7 +123,7 @@ void Crowd::command(std::size_t first, std::size_t count) {
   }
   // Each phase's lanes padded to whole vectors (the padding holds what earlier steps left there;
   // its outputs are unread). A phase has room for every lane padding can add.
-  static_assert(kLanesPerSlot % fuzzy::detail::kBatchVectorLanes == 0);
+  static_assert(kLanesPerSlot % fuzzy::detail::kMaxBatchVectorLanes == 0);
   const std::size_t lanes_in[2] = {fuzzy::detail::padded_lanes(legs_in[0]),
                                    fuzzy::detail::padded_lanes(legs_in[1])};
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {

@@ -1,7 +1,7 @@
 // A crowd's batch of sines and cosines for AVX2: compiled for AVX2 (see src/runtime/CMakeLists.txt)
 // and run only where simd::has_avx2(). Includes nothing but sin_cos_vector.hpp (lanes.hpp and the
 // standard library), so that no inline function compiled here is shared with baseline code.
-#define FUZZYGAIT_SIMD_ISA_TU 1
+#define FUZZYGAIT_SIMD_AVX2_TU 1
 #include "runtime/rig/sin_cos_vector.hpp"
 
 namespace fuzzygait::rig::detail {

@@ -71,5 +71,8 @@ FUZZYGAIT_ALWAYS_INLINE typename D::Mask sin_cos_vector(D x, D& sin, D& cos) {
 // AVX2): only where simd::has_avx2(), and n a multiple of 4. Returns whether a lane was at or
 // beyond kSinCosExactBelow (its results then need libm's).
 bool sin_cos_avx2(const double* x, double* sin, double* cos, std::size_t n);
+// The same with simd::avx512::Double8 (sin_cos_avx512.cpp): only where simd::has_avx512(), and n a
+// multiple of 8.
+bool sin_cos_avx512(const double* x, double* sin, double* cos, std::size_t n);
 
 }  // namespace fuzzygait::rig::detail

@@ -8,4 +8,7 @@ namespace fuzzygait::simd {
 // scalar build. Decided on the first call.
 bool has_avx2() noexcept;
 
+// The same for the AVX-512F translation units and AVX-512F.
+bool has_avx512() noexcept;
+
 }  // namespace fuzzygait::simd

@@ -4,23 +4,25 @@
 // instruction set, and every body gives the scalar body's bits: each operation is the same IEEE
 // operation in each lane.
 //
-//   simd::scalar::{Double2, Double4, Int4}   always (loops over lanes)
+//   simd::scalar::{Double2, Double4, Double8, Int4, Int8}   always (loops over lanes)
 //   simd::sse2::Double2                      on x86-64 (SSE2 is part of it)
 //   simd::avx2::{Double4, Int4}              only in a translation unit compiled for AVX2
+//   simd::avx512::{Double8, Int8}            only in a translation unit compiled for AVX-512F
 //   simd::Double2                            sse2's where there is one, else scalar's
 //
 // Bodies live in their own namespaces so that no inline function is shared by translation units
 // compiled for different instruction sets: a linker keeps one copy of an inline function that was
 // not inlined, and an AVX2 copy chosen for baseline code would crash a machine without AVX2. A
-// translation unit compiled for AVX2 defines FUZZYGAIT_SIMD_ISA_TU before including this header;
-// it then sees the avx2 body alone, and it calls no other inline function (standard library ones
-// included) but the compiler's intrinsics. The build defines FUZZYGAIT_SIMD_SCALAR to keep the
-// scalar bodies only (CMake: -DFUZZYGAIT_SIMD=scalar), and FUZZYGAIT_SIMD_AVX2 where it compiles
-// AVX2 translation units (which run where simd::has_avx2()).
+// translation unit compiled for AVX2 (AVX-512F) defines FUZZYGAIT_SIMD_AVX2_TU
+// (FUZZYGAIT_SIMD_AVX512_TU) before including this header; it then sees that body alone, and it
+// calls no other inline function (standard library ones included) but the compiler's intrinsics.
+// The build defines FUZZYGAIT_SIMD_SCALAR to keep the scalar bodies only (CMake:
+// -DFUZZYGAIT_SIMD=scalar), and FUZZYGAIT_SIMD_AVX2 (FUZZYGAIT_SIMD_AVX512) where it compiles such
+// translation units, which run only where simd::has_avx2() (has_avx512()).
 //
 // Operations, the same in every body (D a DoubleN, I an IntN, M a MaskN; a double or an integer
 // converts to every lane):
-//   D(x), D(lane0, ...), D::load(p), store(p, d), I(n), I::load(p), store(p, i)
+//   D(x), D::load(p), store(p, d), I(n), I::load(p), store(p, i), D(lane0, ...) for 2 and 4 lanes
 //   D + - * / D, -D (the sign flipped), abs(D) (the sign cleared), compound assignments
 //   D == != < <= > >= D -> M with C++'s IEEE semantics (a NaN compares false, except with !=)
 //   M & M, M | M, !M, any(M), bits(M) (lane k in bit k), select(M, yes, no) for D and I
@@ -34,18 +36,35 @@
 
 #include "fuzzygait/compiler.hpp"
 
-#if defined(FUZZYGAIT_SIMD_ISA_TU) && !defined(__AVX2__)
-#error "FUZZYGAIT_SIMD_ISA_TU: this translation unit must be compiled for AVX2 (see CMake)"
+// Which bodies this translation unit sees.
+#if defined(FUZZYGAIT_SIMD_AVX2_TU) || defined(FUZZYGAIT_SIMD_AVX512_TU)
+#define FUZZYGAIT_SIMD_ISA_TU 1
 #endif
+#if defined(FUZZYGAIT_SIMD_AVX2_TU) && !defined(__AVX2__)
+#error "FUZZYGAIT_SIMD_AVX2_TU: compile this translation unit for AVX2 (see CMake)"
+#endif
+#if defined(FUZZYGAIT_SIMD_AVX512_TU) && !defined(__AVX512F__)
+#error "FUZZYGAIT_SIMD_AVX512_TU: compile this translation unit for AVX-512F (see CMake)"
+#endif
+#if !defined(FUZZYGAIT_SIMD_ISA_TU) && !defined(FUZZYGAIT_SIMD_SCALAR) && \
+    (defined(__SSE2__) || defined(_M_X64))
+#define FUZZYGAIT_SIMD_HAVE_SSE2 1
+#endif
+#if defined(__AVX2__) && !defined(FUZZYGAIT_SIMD_AVX512_TU)
+#define FUZZYGAIT_SIMD_HAVE_AVX2 1
+#endif
+#if defined(__AVX512F__) && !defined(FUZZYGAIT_SIMD_AVX2_TU)
+#define FUZZYGAIT_SIMD_HAVE_AVX512 1
+#endif
+
 #if !defined(FUZZYGAIT_SIMD_ISA_TU)
 #include <bit>
 #include <cmath>
-#if !defined(FUZZYGAIT_SIMD_SCALAR) && (defined(__SSE2__) || defined(_M_X64))
-#define FUZZYGAIT_SIMD_HAVE_SSE2 1
+#endif
+#if defined(FUZZYGAIT_SIMD_HAVE_SSE2)
 #include <emmintrin.h>
 #endif
-#endif
-#if defined(__AVX2__)
+#if defined(FUZZYGAIT_SIMD_HAVE_AVX2) || defined(FUZZYGAIT_SIMD_HAVE_AVX512)
 #include <immintrin.h>
 #endif
 
@@ -285,11 +304,14 @@ using Mask4 = Masks<4>;
 using Int4 = Ints<4>;
 using Double2 = Doubles<2>;
 using Double4 = Doubles<4>;
+using Mask8 = Masks<8>;
+using Int8 = Ints<8>;
+using Double8 = Doubles<8>;
 
 }  // namespace scalar
 #endif  // !FUZZYGAIT_SIMD_ISA_TU
 
-#if defined(FUZZYGAIT_SIMD_HAVE_SSE2) || defined(__AVX2__)
+#if defined(FUZZYGAIT_SIMD_HAVE_SSE2) || defined(FUZZYGAIT_SIMD_HAVE_AVX2)
 // The comparisons of the x86 bodies. GCC and Clang compare as their generic vector operations,
 // which their optimisers know yield masks and so fold into the selects and bit operations that use
 // them (GCC's comparison intrinsics are opaque to it, and a blend on such a mask cost an extra
@@ -406,7 +428,7 @@ struct Double2 {
 }  // namespace sse2
 #endif  // FUZZYGAIT_SIMD_HAVE_SSE2
 
-#if defined(__AVX2__)
+#if defined(FUZZYGAIT_SIMD_HAVE_AVX2)
 namespace avx2 {
 
 template <Compare C>
@@ -594,7 +616,164 @@ FUZZYGAIT_ALWAYS_INLINE Double4 as_double(Int4 a) {
 }
 
 }  // namespace avx2
-#endif  // __AVX2__
+#endif  // FUZZYGAIT_SIMD_HAVE_AVX2
+
+#if defined(FUZZYGAIT_SIMD_HAVE_AVX512)
+namespace avx512 {
+
+// AVX-512F only: a mask is a mask register, one bit a lane.
+struct Mask8 {
+  static constexpr std::size_t kLanes = 8;
+  __mmask8 v;
+
+  friend FUZZYGAIT_ALWAYS_INLINE Mask8 operator&(Mask8 a, Mask8 b) {
+    return {static_cast<__mmask8>(a.v & b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask8 operator|(Mask8 a, Mask8 b) {
+    return {static_cast<__mmask8>(a.v | b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask8 operator!(Mask8 a) { return {static_cast<__mmask8>(~a.v)}; }
+  friend FUZZYGAIT_ALWAYS_INLINE unsigned bits(Mask8 a) { return a.v; }
+  friend FUZZYGAIT_ALWAYS_INLINE bool any(Mask8 a) { return a.v != 0; }
+};
+
+struct Int8 {
+  static constexpr std::size_t kLanes = 8;
+  using Mask = Mask8;
+  __m512i v;
+
+  Int8() = default;
+  FUZZYGAIT_ALWAYS_INLINE Int8(std::int64_t n) : v(_mm512_set1_epi64(n)) {}  // every lane n
+  FUZZYGAIT_ALWAYS_INLINE explicit Int8(__m512i x) : v(x) {}
+  static FUZZYGAIT_ALWAYS_INLINE Int8 load(const std::int64_t* p) {
+    return Int8(_mm512_loadu_si512(p));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE void store(std::int64_t* p, Int8 a) {
+    _mm512_storeu_si512(p, a.v);
+  }
+
+  friend FUZZYGAIT_ALWAYS_INLINE Int8 operator+(Int8 a, Int8 b) {
+    return Int8(_mm512_add_epi64(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int8 operator-(Int8 a, Int8 b) {
+    return Int8(_mm512_sub_epi64(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int8 operator&(Int8 a, Int8 b) {
+    return Int8(_mm512_and_si512(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int8 operator|(Int8 a, Int8 b) {
+    return Int8(_mm512_or_si512(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int8 operator^(Int8 a, Int8 b) {
+    return Int8(_mm512_xor_si512(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator==(Int8 a, Int8 b) {
+    return {_mm512_cmpeq_epi64_mask(a.v, b.v)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int8 select(Mask m, Int8 yes, Int8 no) {
+    return Int8(_mm512_mask_blend_epi64(m.v, no.v, yes.v));
+  }
+};
+
+template <unsigned Shift>
+FUZZYGAIT_ALWAYS_INLINE Int8 shift_left(Int8 a) {
+  static_assert(Shift < 64);
+  // (The zero-masking forms, all lanes kept: GCC 12 warns that the plain ones' undefined
+  // pass-through value may be used uninitialised.)
+  return Int8(_mm512_maskz_slli_epi64(0xFF, a.v, Shift));
+}
+// A power of two is a shift; any other factor multiplies the lanes' low 32 bits.
+template <std::uint32_t Factor>
+FUZZYGAIT_ALWAYS_INLINE Int8 multiply_small(Int8 a) {
+  if constexpr (Factor != 0 && (Factor & (Factor - 1)) == 0) {
+    constexpr unsigned shift = [] {
+      unsigned s = 0;
+      while ((std::uint32_t{1} << s) != Factor)
+        ++s;
+      return s;
+    }();
+    return Int8(_mm512_maskz_slli_epi64(0xFF, a.v, shift));
+  } else {
+    return Int8(_mm512_maskz_mul_epu32(0xFF, a.v, _mm512_set1_epi64(Factor)));
+  }
+}
+FUZZYGAIT_ALWAYS_INLINE Int8 as_int(Mask8 m) {
+  return Int8(_mm512_maskz_mov_epi64(m.v, _mm512_set1_epi64(-1)));
+}
+
+struct Double8 {
+  static constexpr std::size_t kLanes = 8;
+  using Mask = Mask8;
+  using Int = Int8;
+  __m512d v;
+
+  Double8() = default;
+  FUZZYGAIT_ALWAYS_INLINE Double8(double x) : v(_mm512_set1_pd(x)) {}  // every lane x
+  FUZZYGAIT_ALWAYS_INLINE explicit Double8(__m512d x) : v(x) {}
+  static FUZZYGAIT_ALWAYS_INLINE Double8 load(const double* p) {
+    return Double8(_mm512_loadu_pd(p));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE void store(double* p, Double8 a) { _mm512_storeu_pd(p, a.v); }
+
+  friend FUZZYGAIT_ALWAYS_INLINE Double8 operator+(Double8 a, Double8 b) {
+    return Double8(_mm512_add_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double8 operator-(Double8 a, Double8 b) {
+    return Double8(_mm512_sub_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double8 operator*(Double8 a, Double8 b) {
+    return Double8(_mm512_mul_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double8 operator/(Double8 a, Double8 b) {
+    return Double8(_mm512_div_pd(a.v, b.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double8& operator+=(Double8& a, Double8 b) { return a = a + b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double8& operator-=(Double8& a, Double8 b) { return a = a - b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double8& operator*=(Double8& a, Double8 b) { return a = a * b; }
+  friend FUZZYGAIT_ALWAYS_INLINE Double8& operator/=(Double8& a, Double8 b) { return a = a / b; }
+  // Sign bits flipped or cleared as integers.
+  friend FUZZYGAIT_ALWAYS_INLINE Double8 operator-(Double8 a) {
+    return Double8(_mm512_castsi512_pd(
+        _mm512_xor_si512(_mm512_castpd_si512(a.v), _mm512_set1_epi64(std::int64_t{-1} << 63))));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double8 abs(Double8 a) {
+    return Double8(_mm512_castsi512_pd(
+        _mm512_and_si512(_mm512_castpd_si512(a.v), _mm512_set1_epi64(~(std::int64_t{-1} << 63)))));
+  }
+  // C++'s comparisons: ordered (false with a NaN), except != (true with a NaN).
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator==(Double8 a, Double8 b) {
+    return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_EQ_OQ)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator!=(Double8 a, Double8 b) {
+    return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_NEQ_UQ)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator<(Double8 a, Double8 b) {
+    return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_LT_OS)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator<=(Double8 a, Double8 b) {
+    return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_LE_OS)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator>(Double8 a, Double8 b) {
+    return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_GT_OS)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Mask operator>=(Double8 a, Double8 b) {
+    return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_GE_OS)};
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Double8 select(Mask m, Double8 yes, Double8 no) {
+    return Double8(_mm512_mask_blend_pd(m.v, no.v, yes.v));
+  }
+  friend FUZZYGAIT_ALWAYS_INLINE Int as_int(Double8 a) { return Int8(_mm512_castpd_si512(a.v)); }
+};
+
+FUZZYGAIT_ALWAYS_INLINE Double8 gather(const double* base, Int8 index, Mask8 m) {
+  return Double8(_mm512_mask_i64gather_pd(_mm512_setzero_pd(), m.v, index.v, base, 8));
+}
+FUZZYGAIT_ALWAYS_INLINE Double8 as_double(Int8 a) {
+  return Double8(_mm512_castsi512_pd(a.v));
+}
+
+}  // namespace avx512
+#endif  // FUZZYGAIT_SIMD_HAVE_AVX512
 
 #if !defined(FUZZYGAIT_SIMD_ISA_TU)
 #if defined(FUZZYGAIT_SIMD_HAVE_SSE2)
