@@ -235,7 +235,7 @@ void detail::evaluate_batch(const PackedPartition& p, const double* x0, const do
   const bool one_input = view.shape == PackedShape::OneInput;
   std::size_t done = 0;
   // Whole vectors of the lanes [done, done + count).
-  auto in_vectors = [&](std::size_t width, auto kernel) {
+  [[maybe_unused]] auto in_vectors = [&](std::size_t width, auto kernel) {
     const std::size_t count = (n - done) / width * width;
     if (count == 0) return;
     kernel(view, x0 + done, one_input ? nullptr : x1 + done, out + done, count);
