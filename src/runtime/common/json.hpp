@@ -12,6 +12,15 @@
 namespace fuzzygait::common::json {
 
 struct Value {
+  // Defined in json.cpp, where Value is complete: Clang (with libstdc++ in C++20) cannot
+  // instantiate the members' destructors for the pair of an incomplete Value here.
+  Value();
+  ~Value();
+  Value(const Value&);
+  Value(Value&&) noexcept;
+  Value& operator=(const Value&);
+  Value& operator=(Value&&) noexcept;
+
   enum class Kind { Null, Boolean, Number, String, Array, Object };
   Kind kind = Kind::Null;
   bool boolean = false;

@@ -326,19 +326,35 @@ namespace sse2 {
 template <Compare C>
 FUZZYGAIT_ALWAYS_INLINE __m128i compare(__m128d a, __m128d b) {
 #if defined(__GNUC__)
-  if constexpr (C == Compare::Equal) return reinterpret_cast<__m128i>(a == b);
-  if constexpr (C == Compare::NotEqual) return reinterpret_cast<__m128i>(a != b);
-  if constexpr (C == Compare::Less) return reinterpret_cast<__m128i>(a < b);
-  if constexpr (C == Compare::LessEqual) return reinterpret_cast<__m128i>(a <= b);
-  if constexpr (C == Compare::Greater) return reinterpret_cast<__m128i>(a > b);
-  if constexpr (C == Compare::GreaterEqual) return reinterpret_cast<__m128i>(a >= b);
+  if constexpr (C == Compare::Equal) {
+    return reinterpret_cast<__m128i>(a == b);
+  } else if constexpr (C == Compare::NotEqual) {
+    return reinterpret_cast<__m128i>(a != b);
+  } else if constexpr (C == Compare::Less) {
+    return reinterpret_cast<__m128i>(a < b);
+  } else if constexpr (C == Compare::LessEqual) {
+    return reinterpret_cast<__m128i>(a <= b);
+  } else if constexpr (C == Compare::Greater) {
+    return reinterpret_cast<__m128i>(a > b);
+  } else {
+    static_assert(C == Compare::GreaterEqual);
+    return reinterpret_cast<__m128i>(a >= b);
+  }
 #else
-  if constexpr (C == Compare::Equal) return _mm_castpd_si128(_mm_cmpeq_pd(a, b));
-  if constexpr (C == Compare::NotEqual) return _mm_castpd_si128(_mm_cmpneq_pd(a, b));
-  if constexpr (C == Compare::Less) return _mm_castpd_si128(_mm_cmplt_pd(a, b));
-  if constexpr (C == Compare::LessEqual) return _mm_castpd_si128(_mm_cmple_pd(a, b));
-  if constexpr (C == Compare::Greater) return _mm_castpd_si128(_mm_cmpgt_pd(a, b));
-  if constexpr (C == Compare::GreaterEqual) return _mm_castpd_si128(_mm_cmpge_pd(a, b));
+  if constexpr (C == Compare::Equal) {
+    return _mm_castpd_si128(_mm_cmpeq_pd(a, b));
+  } else if constexpr (C == Compare::NotEqual) {
+    return _mm_castpd_si128(_mm_cmpneq_pd(a, b));
+  } else if constexpr (C == Compare::Less) {
+    return _mm_castpd_si128(_mm_cmplt_pd(a, b));
+  } else if constexpr (C == Compare::LessEqual) {
+    return _mm_castpd_si128(_mm_cmple_pd(a, b));
+  } else if constexpr (C == Compare::Greater) {
+    return _mm_castpd_si128(_mm_cmpgt_pd(a, b));
+  } else {
+    static_assert(C == Compare::GreaterEqual);
+    return _mm_castpd_si128(_mm_cmpge_pd(a, b));
+  }
 #endif
 }
 
@@ -434,24 +450,34 @@ namespace avx2 {
 template <Compare C>
 FUZZYGAIT_ALWAYS_INLINE __m256i compare(__m256d a, __m256d b) {
 #if defined(__GNUC__)
-  if constexpr (C == Compare::Equal) return reinterpret_cast<__m256i>(a == b);
-  if constexpr (C == Compare::NotEqual) return reinterpret_cast<__m256i>(a != b);
-  if constexpr (C == Compare::Less) return reinterpret_cast<__m256i>(a < b);
-  if constexpr (C == Compare::LessEqual) return reinterpret_cast<__m256i>(a <= b);
-  if constexpr (C == Compare::Greater) return reinterpret_cast<__m256i>(a > b);
-  if constexpr (C == Compare::GreaterEqual) return reinterpret_cast<__m256i>(a >= b);
+  if constexpr (C == Compare::Equal) {
+    return reinterpret_cast<__m256i>(a == b);
+  } else if constexpr (C == Compare::NotEqual) {
+    return reinterpret_cast<__m256i>(a != b);
+  } else if constexpr (C == Compare::Less) {
+    return reinterpret_cast<__m256i>(a < b);
+  } else if constexpr (C == Compare::LessEqual) {
+    return reinterpret_cast<__m256i>(a <= b);
+  } else if constexpr (C == Compare::Greater) {
+    return reinterpret_cast<__m256i>(a > b);
+  } else {
+    static_assert(C == Compare::GreaterEqual);
+    return reinterpret_cast<__m256i>(a >= b);
+  }
 #else
   // C++'s comparisons: ordered (false with a NaN), except != (true with a NaN).
-  if constexpr (C == Compare::Equal) return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_EQ_OQ));
-  if constexpr (C == Compare::NotEqual) {
+  if constexpr (C == Compare::Equal) {
+    return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_EQ_OQ));
+  } else if constexpr (C == Compare::NotEqual) {
     return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_NEQ_UQ));
-  }
-  if constexpr (C == Compare::Less) return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_LT_OS));
-  if constexpr (C == Compare::LessEqual) {
+  } else if constexpr (C == Compare::Less) {
+    return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_LT_OS));
+  } else if constexpr (C == Compare::LessEqual) {
     return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_LE_OS));
-  }
-  if constexpr (C == Compare::Greater) return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_GT_OS));
-  if constexpr (C == Compare::GreaterEqual) {
+  } else if constexpr (C == Compare::Greater) {
+    return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_GT_OS));
+  } else {
+    static_assert(C == Compare::GreaterEqual);
     return _mm256_castpd_si256(_mm256_cmp_pd(a, b, _CMP_GE_OS));
   }
 #endif
