@@ -10,12 +10,15 @@ packages=(
   clang-format                     # the sources' format check (version 14 on Debian 12)
   # libraries (MIT/BSD/Apache: may be linked into the library and the program)
   libeigen3-dev nlohmann-json3-dev libcli11-dev libceres-dev
+  libtinygltf-dev                  # glTF export (MIT; a shared library, pulls in libstb0)
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # GPL reference oracle: linked only by the tests and by fuzzygait-bench
   libfuzzylite-dev fuzzylite
   # BVH import check with three.js (npm lock file in tests/js)
   nodejs npm
+  # the mocap reader's reference extractor (tests/tools/bvh_sagittal.py), run by the tests
+  python3
 )
 
 # A Node.js installed otherwise counts: NodeSource's nodejs package bundles npm and conflicts with

@@ -37,5 +37,6 @@ void add_fuzzy_plot_command(CLI::App& fuzzy);
 void add_tune_command(CLI::App& app);
 void add_walk_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
+void add_mocap_command(CLI::App& app);
 
 }  // namespace fuzzygait::cli

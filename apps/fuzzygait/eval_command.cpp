@@ -1,15 +1,17 @@
-// `fuzzygait eval`: the realism and contact figures of a walk CSV (docs/measuring.md),
-// as a table and as JSON.
+// `fuzzygait eval`: the realism and contact figures of a walk CSV and the measures on its terrain
+// (docs/measuring.md), as tables and as JSON.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "commands.hpp"
 #include "fuzzygait/eval/evaluation.hpp"
+#include "fuzzygait/eval/terrain_report.hpp"
 #include "fuzzygait/io/files.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
@@ -38,7 +40,8 @@ void add_eval_command(CLI::App& app) {
   };
   auto o = std::make_shared<Options>();
   CLI::App* eval = app.add_subcommand("eval", "Measure a walk CSV against normative gait data");
-  eval->add_option("walk", o->csv, "Walk CSV written by `fuzzygait walk`")->required();
+  eval->add_option("walk", o->csv, "Walk CSV written by `fuzzygait walk` or `fuzzygait mocap`")
+      ->required();
   eval->add_option("--reference", o->reference,
                    "Normative curves: built-in name (schwartz2008_veryslow, _slow, _free, _fast, "
                    "_veryfast) or a CSV file");
@@ -61,13 +64,31 @@ void add_eval_command(CLI::App& app) {
     }
     const terrain::Terrain ground = load_terrain(terrain_path);
     const eval::Normative reference = io::load_normative(o->reference);
-    const eval::GaitReport report = eval::evaluate(motion, ground, &reference, o->step);
-    const std::string json = eval::to_json(report);
+    // The level figures need two complete cycles; the terrain's are measured on any walk.
+    std::optional<eval::GaitReport> report;
+    std::string not_measured;
+    try {
+      report = eval::evaluate(motion, ground, &reference, o->step);
+    } catch (const std::invalid_argument& e) {
+      not_measured = e.what();
+    }
+    const eval::TerrainReport on_terrain = eval::evaluate_terrain(motion, ground);
+    nlohmann::ordered_json j = report ? nlohmann::ordered_json::parse(eval::to_json(*report))
+                                      : nlohmann::ordered_json::object();
+    if (!report) j["not_measured"] = not_measured;
+    j["terrain"] = nlohmann::ordered_json::parse(eval::to_json(on_terrain));
+    const std::string json = j.dump(2);
     if (o->json == "-") {
       std::cout << json << "\n";
       return;
     }
-    std::cout << "reference: " << reference.name << "\n" << eval::to_text(report);
+    std::cout << "reference: " << reference.name << "\n";
+    if (report) {
+      std::cout << eval::to_text(*report);
+    } else {
+      std::cout << "gait cycle figures not measured: " << not_measured << "\n";
+    }
+    std::cout << "\n" << eval::to_text(on_terrain);
     if (!o->json.empty()) {
       io::write_file(o->json, json + "\n");
     }

@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   fuzzygait::cli::add_walk_command(app);
   fuzzygait::cli::add_eval_command(app);
+  fuzzygait::cli::add_mocap_command(app);
   fuzzygait::cli::add_fuzzy_command(app);
   fuzzygait::cli::add_tune_command(app);
   int status = 0;

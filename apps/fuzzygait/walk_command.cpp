@@ -6,13 +6,17 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "commands.hpp"
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/eval/motion.hpp"
+#include "fuzzygait/eval/terrain_report.hpp"
 #include "fuzzygait/io/bvh.hpp"
 #include "fuzzygait/io/files.hpp"
+#include "fuzzygait/io/gltf.hpp"
 #include "fuzzygait/io/normative.hpp"
+#include "fuzzygait/io/terrain_spec.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
 #include "fuzzygait/plot/svg.hpp"
 #include "fuzzygait/plot/walk_plots.hpp"
@@ -36,6 +40,8 @@ struct WalkOptions {
   std::string start_pose = "default";
   std::string prefix = "out/walk";
   std::string reference = "schwartz2008_free";
+  bool gltf = false;
+  std::string terrain = "flat";
 };
 
 gait::StartPose parse_start(const std::string& text) {
@@ -60,16 +66,60 @@ gait::StartPose parse_start(const std::string& text) {
                               "'");
 }
 
+// The ground written around the walk (m): from before its first frame to after its last, so that
+// whatever reads the file has the same ground under every point of the walk.
+constexpr double kGroundMargin = 1.0;
+
+// The smallest and largest x of the pelvis and every leg point over the walk.
+std::pair<double, double> walked_extent(const eval::Motion& motion) {
+  double low = motion.frames.front().pose.pelvis.x;
+  double high = low;
+  for (const eval::Frame& f : motion.frames) {
+    low = std::min(low, f.pose.pelvis.x);
+    high = std::max(high, f.pose.pelvis.x);
+    for (const rig::LegPoints& p : f.points) {
+      for (const rig::Point& q : {p.hip, p.knee, p.ankle, p.heel, p.ball, p.tip}) {
+        low = std::min(low, q.x);
+        high = std::max(high, q.x);
+      }
+    }
+  }
+  return {low, high};
+}
+
 // The default set meets the contact bounds over its step range (docs/walk.md, "Step lengths");
 // a style or a set of one's own may not, and the files are written all the same, so the reader
 // is told.
-void warn_about_contact(const eval::GaitReport& report) {
-  const std::vector<std::string> missed = eval::missed_contact_bounds(report);
+void warn_about_contact(const std::vector<std::string>& missed) {
   if (missed.empty()) return;
   std::cerr << "fuzzygait: warning: this walk misses the contact bounds: ";
   for (std::size_t i = 0; i < missed.size(); ++i)
     std::cerr << (i > 0 ? "; " : "") << missed[i];
   std::cerr << "\n";
+}
+
+// Level ground at one height everywhere.
+bool is_level(const terrain::Terrain& ground) {
+  const std::vector<rig::Point>& p = ground.points();
+  return std::all_of(p.begin(), p.end(), [&](const rig::Point& q) { return q.y == p[0].y; });
+}
+
+// The left stride the pictures show: stride 1 on level ground (the start from standing is
+// stride 0); on other ground, the left stride beginning at the middle of the left strikes off
+// level ground, with a stride after it for the two-stride loop.
+int pictured_stride(const eval::Motion& motion, const eval::TerrainReport& report) {
+  const std::vector<std::size_t> left = eval::heel_strikes(motion, rig::Side::Left);
+  std::vector<std::size_t> off_level;
+  for (const eval::TerrainStep& step : report.steps) {
+    if (step.side == rig::Side::Left && step.footing != eval::Footing::Level) {
+      off_level.push_back(step.frame);
+    }
+  }
+  if (off_level.empty() || left.size() < 3) return 1;
+  const std::size_t frame = off_level[(off_level.size() - 1) / 2];
+  const auto at = std::find(left.begin(), left.end(), frame) - left.begin();
+  return static_cast<int>(
+      std::clamp<std::ptrdiff_t>(at, 0, static_cast<std::ptrdiff_t>(left.size()) - 3));
 }
 
 }  // namespace
@@ -96,9 +146,19 @@ void add_walk_command(CLI::App& app) {
   walk->add_option("--start-pose", o->start_pose, "default, or random:SEED (awkward start)");
   walk->add_option("-o,--output", o->prefix, "Prefix of the files written (default out/walk)");
   walk->add_option("--reference", o->reference, "Normative curves for the plot and summary");
+  walk->add_flag("--gltf", o->gltf,
+                 "Also write PREFIX.glb: glTF 2.0 with the skeleton, the animation, a skinned "
+                 "body and the ground");
+  walk->add_option("--terrain", o->terrain,
+                   "Ground: flat, slope:DEG[:LENGTH], stairs:RISE:TREAD:COUNT or profile:FILE.csv, "
+                   "joined by + (default flat)");
   walk->footer(
-      "Writes PREFIX.csv (one row per frame), PREFIX.terrain.csv, PREFIX.bvh, PREFIX.svg\n"
-      "(joint angles over the gait cycle against the normative band) and PREFIX.poses.svg.");
+      "Writes PREFIX.csv (one row per frame), PREFIX.terrain.csv (the ground walked), PREFIX.bvh,\n"
+      "PREFIX.svg (joint angles over the gait cycle against the normative band) and\n"
+      "PREFIX.poses.svg; with --gltf also PREFIX.glb.\n"
+      "--terrain: a slope (-25 to 25 deg) or stairs (RISE 0.05-0.25 m, negative going down;\n"
+      "TREAD 0.20-0.40 m) start at x = 1 m after level ground; stairs end in a level landing;\n"
+      "parts joined by + follow one another: slope:8+stairs:0.17:0.28:6+flat.");
   walk->callback([o, walk]() {
     // CLI11's range checks let NaN through (every comparison with it is false).
     if (walk->count("--duration") > 0 && !(o->duration > 0.0 && o->duration <= 36000.0)) {
@@ -112,6 +172,7 @@ void add_walk_command(CLI::App& app) {
     check_output_prefix(o->prefix, "-o");
     // Everything that can be refused is refused before any file is written.
     const eval::Normative reference = io::load_normative(o->reference);
+    const terrain::Terrain ground = io::terrain_from_spec(o->terrain, "--terrain");
     const gait::ControllerSet set = o->controllers.empty()
                                         ? gait::ControllerSet::builtin(o->style)
                                         : gait::ControllerSet::load(o->controllers);
@@ -125,7 +186,6 @@ void add_walk_command(CLI::App& app) {
     options.segments.toe = o->toe.value_or(options.segments.toe);
     options.step_length = o->step;
     options.start = parse_start(o->start_pose);
-    const terrain::Terrain ground = terrain::Terrain::flat();
     gait::Walker walker(set, options, ground);
     const eval::Motion motion = o->duration > 0.0 ? eval::record(walker, o->duration, o->fps)
                                                   : eval::record_cycles(walker, o->cycles, o->fps);
@@ -134,20 +194,25 @@ void add_walk_command(CLI::App& app) {
     io::write_file(o->prefix + ".csv",
                    [&motion](std::ostream& out) { io::write_walk_csv(out, motion); });
     io::write_file(o->prefix + ".terrain.csv", [&](std::ostream& out) {
-      const double x0 = motion.frames.front().pose.pelvis.x - 2.0;
-      const double x1 = motion.frames.back().pose.pelvis.x + 2.0;
-      io::write_terrain_csv(out, ground, x0, x1);
+      const auto [x0, x1] = walked_extent(motion);
+      io::write_terrain_csv(out, ground, x0 - kGroundMargin, x1 + kGroundMargin);
     });
     io::write_file(o->prefix + ".bvh",
                    [&motion](std::ostream& out) { io::write_bvh(out, motion); });
+    if (o->gltf) io::write_gltf(o->prefix + ".glb", motion, ground);
     std::cout << "walked " << motion.frames.size() << " frames (" << motion.frames.back().time
               << " s) with controller set '" << set.name << "'\n";
     std::vector<std::string> written = {o->prefix + ".csv", o->prefix + ".terrain.csv",
                                         o->prefix + ".bvh"};
+    if (o->gltf) written.push_back(o->prefix + ".glb");
+    // Off level ground, the contact bounds are the terrain's (every leg point, edges too).
+    const bool level = is_level(ground);
+    const eval::TerrainReport on_terrain = eval::evaluate_terrain(motion, ground);
+    if (!level) warn_about_contact(eval::missed_contact_bounds(on_terrain));
     try {
       const eval::GaitReport report = eval::evaluate(motion, ground, &reference, o->step);
       std::cout << "against " << reference.name << ":\n" << eval::to_text(report);
-      warn_about_contact(report);
+      if (level) warn_about_contact(eval::missed_contact_bounds(report));
       plot::plot_gait_curves(report, &reference, {.title = "fuzzygait walk, " + set.name})
           .save(o->prefix + ".svg");
       written.push_back(o->prefix + ".svg");
@@ -155,9 +220,20 @@ void add_walk_command(CLI::App& app) {
       std::cout << "not measured, no curves: " << e.what() << "\n";
     }
     try {
-      const svg::Figure animation = plot::plot_walk_animation(motion, ground);
-      const svg::Figure filmstrip = plot::plot_filmstrip(motion, ground);
-      io::write_file(o->prefix + ".poses.svg", svg::stack_figures({&animation, &filmstrip}));
+      // Off level ground: the whole walk over its ground first, then a loop and a filmstrip of a
+      // stride on the ground's feature.
+      const int stride = level ? 1 : pictured_stride(motion, on_terrain);
+      std::vector<svg::Figure> figures;
+      if (!level) {
+        figures.push_back(
+            plot::plot_walk_animation(motion, ground, {.strides = 0, .follow = false}));
+      }
+      figures.push_back(plot::plot_walk_animation(motion, ground, {.first_stride = stride}));
+      figures.push_back(plot::plot_filmstrip(motion, ground, {.stride = stride}));
+      std::vector<const svg::Figure*> stacked;
+      for (const svg::Figure& f : figures)
+        stacked.push_back(&f);
+      io::write_file(o->prefix + ".poses.svg", svg::stack_figures(stacked));
       written.push_back(o->prefix + ".poses.svg");
     } catch (const std::invalid_argument& e) {
       std::cout << "no poses: " << e.what() << "\n";

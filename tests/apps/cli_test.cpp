@@ -9,9 +9,13 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "fuzzygait/eval/terrain_report.hpp"
+#include "fuzzygait/io/terrain_spec.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
 #include "support/program.hpp"
 #include "support/text.hpp"
@@ -148,6 +152,124 @@ TEST(WalkCommand, AFullDiskIsAnError) {
     EXPECT_EQ(read_text(errors), "fuzzygait: error: cannot write to standard output\n")
         << arguments;
   }
+}
+
+// The BVH root's height (the second channel, cm) in the first and last frames.
+std::pair<double, double> bvh_root_heights(const std::string& bvh) {
+  std::istringstream in(bvh.substr(bvh.find("Frame Time:")));
+  std::string line;
+  std::getline(in, line);
+  std::vector<double> heights;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    double x = 0.0;
+    double y = 0.0;
+    if (row >> x >> y) heights.push_back(y);
+  }
+  return {heights.front(), heights.back()};
+}
+
+TEST(WalkCommand, WalksTheTerrainAndWritesTheGroundWalked) {
+  const std::filesystem::path prefix = scratch("stairs");
+  const std::string spec = "stairs:0.17:0.28:4";
+  const auto run =
+      run_program("walk --terrain " + spec + " --cycles 6 --fps 60 -o " + shell_quoted(prefix));
+  ASSERT_EQ(run.status, 0) << run.output;
+  for (const char* ext : {".csv", ".terrain.csv", ".bvh", ".poses.svg"}) {
+    EXPECT_TRUE(std::filesystem::exists(prefix.string() + ext)) << ext;
+  }
+  std::ifstream csv(prefix.string() + ".csv");
+  const eval::Motion motion = io::read_walk_csv(csv, "stairs.csv");
+  std::ifstream terrain_csv(prefix.string() + ".terrain.csv");
+  const terrain::Terrain written = io::read_terrain_csv(terrain_csv, "stairs.terrain.csv");
+  const terrain::Terrain ground = io::terrain_from_spec(spec);
+  // The ground from before the first frame to after the last, corners and all: the same heights.
+  double low = motion.frames.front().pose.pelvis.x;
+  double high = low;
+  for (const eval::Frame& f : motion.frames) {
+    for (const rig::LegPoints& p : f.points) {
+      for (const rig::Point& q : {p.hip, p.knee, p.ankle, p.heel, p.ball, p.tip}) {
+        low = std::min(low, q.x);
+        high = std::max(high, q.x);
+      }
+    }
+  }
+  EXPECT_LT(written.points().front().x, low - 0.5);
+  EXPECT_GT(written.points().back().x, high + 0.5);
+  for (double x = low - 0.5; x < high + 0.5; x += 0.0037) {
+    EXPECT_NEAR(written.height(x), ground.height(x), 2e-6) << x;
+  }
+  EXPECT_EQ(written.runs().size(), ground.runs().size());
+  // The walk climbed: the pelvis and the BVH's root end 0.68 m higher, give or take a bob.
+  EXPECT_NEAR(motion.frames.back().pose.pelvis.y - motion.frames.front().pose.pelvis.y, 0.68, 0.1);
+  const auto [first, last] = bvh_root_heights(read_text(prefix.string() + ".bvh"));
+  EXPECT_NEAR(last - first, 68.0, 10.0);
+  // The pictures show the ground: risers are vertical strokes of the ground line.
+  EXPECT_THAT(read_text(prefix.string() + ".poses.svg"), HasSubstr("The whole walk"));
+
+  // eval reads the files back with the same terrain: the same steps as measured on the spec.
+  const auto evaluated =
+      run_program("eval " + shell_quoted(prefix.string() + ".csv") + " --json -");
+  ASSERT_EQ(evaluated.status, 0) << evaluated.output;
+  const nlohmann::json j = nlohmann::json::parse(evaluated.output);
+  const nlohmann::json& t = j.at("terrain");
+  const eval::TerrainReport direct = eval::evaluate_terrain(motion, ground);
+  ASSERT_EQ(t.at("steps").size(), direct.steps.size());
+  for (std::size_t k = 0; k < direct.steps.size(); ++k) {
+    EXPECT_EQ(t.at("steps")[k].at("ground"), eval::name(direct.steps[k].footing)) << k;
+    EXPECT_EQ(t.at("steps")[k].at("run").get<std::size_t>(), direct.steps[k].run) << k;
+  }
+  EXPECT_EQ(t.at("runs").get<std::size_t>(), 5u);  // the ground, 3 treads, the landing
+  bool stairs_up = false;
+  for (const nlohmann::json& g : t.at("groups"))
+    stairs_up = stairs_up || g.at("ground") == "stairs up";
+  EXPECT_TRUE(stairs_up) << t.at("groups").dump();
+  // The table follows the level report; --terrain names the file.
+  const auto table = run_program("eval " + shell_quoted(prefix.string() + ".csv") + " --terrain " +
+                                 shell_quoted(prefix.string() + ".terrain.csv"));
+  ASSERT_EQ(table.status, 0) << table.output;
+  EXPECT_THAT(table.output, HasSubstr("On terrain:"));
+  EXPECT_THAT(table.output, HasSubstr("stairs up"));
+  EXPECT_THAT(table.output, HasSubstr("leg points against the ground"));
+  EXPECT_LT(table.output.find("cadence"), table.output.find("On terrain:"));
+}
+
+TEST(WalkCommand, TerrainWalksStopAndRepeat) {
+  // Stairs that end in a landing: --cycles still stops; --duration as before; the same bytes.
+  const std::filesystem::path a = scratch("ramp_a");
+  const std::filesystem::path b = scratch("ramp_b");
+  for (const auto& p : {a, b}) {
+    const auto run = run_program(
+        "walk --terrain slope:-8:2+stairs:0.15:0.3:2+flat --duration 4 "
+        "--fps 50 -o " +
+        shell_quoted(p));
+    ASSERT_EQ(run.status, 0) << run.output;
+  }
+  EXPECT_EQ(read_text(a.string() + ".csv"), read_text(b.string() + ".csv"));
+  EXPECT_EQ(read_text(a.string() + ".terrain.csv"), read_text(b.string() + ".terrain.csv"));
+  std::ifstream csv(a.string() + ".csv");
+  EXPECT_NEAR(io::read_walk_csv(csv, "a.csv").frames.back().time, 4.0, 1e-6);
+  const auto cycles = run_program("walk --terrain stairs:0.15:0.3:2 --cycles 3 --fps 50 -o " +
+                                  shell_quoted(scratch("short_stairs")));
+  EXPECT_EQ(cycles.status, 0) << cycles.output;
+}
+
+TEST(WalkCommand, ABadTerrainIsRefusedBeforeWritingAnything) {
+  const std::filesystem::path folder = scratch("bad_terrain");
+  std::filesystem::create_directories(folder);
+  for (const auto& [spec, reason] : std::vector<std::pair<std::string, std::string>>{
+           {"stairs:0.3:0.28:6", "--terrain: 'stairs:0.3:0.28:6': rise must be between 0.05"},
+           {"slope:40", "--terrain: 'slope:40': angle must be between -25 and 25 deg, got 40"},
+           {"hill:3", "--terrain: 'hill:3': unknown kind 'hill'"},
+           {"stairs:0.17:0.28", "missing COUNT"},
+           {"slope:nan", "angle 'nan' is not a finite number"},
+           {"profile:no_such_file.csv", "no_such_file.csv: cannot open the file"}}) {
+    const auto run = run_program("walk --cycles 2 --terrain " + spec + " -o " +
+                                 shell_quoted((folder / "walk").string()));
+    EXPECT_NE(run.status, 0) << spec;
+    EXPECT_THAT(run.output, HasSubstr(reason)) << spec;
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(folder)) << "files written before the refusal";
 }
 
 TEST(EvalCommand, PrintsTheTableAndWritesTheJson) {

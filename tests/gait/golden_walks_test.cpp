@@ -109,13 +109,13 @@ const std::vector<GoldenWalk>& golden_walks() {
       {"energetic 1.75 m 0.70 m", "energetic", 1.75, 0.70, 0, -1, 0xb5c2dc39feb9d2eb},
       {"heavy 1.60 m 0.65 m", "heavy", 1.60, 0.65, 0, -1, 0xff0d53815d05b09},
       {"cautious 1.90 m 0.80 m", "cautious", 1.90, 0.80, 0, -1, 0xe673d6e3d8c40ab},
-      {"default on a 5 deg ramp", "default", 1.75, 0.70, 1, -1, 0x9fe5ae19f0abebfd},
-      {"default over a kerb", "default", 1.75, 0.70, 2, -1, 0xfa07fa97179726a9},
-      {"heavy over a kerb", "heavy", 1.75, 0.70, 2, -1, 0xc4ab6d8691e59e8a},
+      {"default on a 5 deg ramp", "default", 1.75, 0.70, 1, -1, 0x17cdb90f88257272},
+      {"default over a kerb", "default", 1.75, 0.70, 2, -1, 0x537d338ba6860637},
+      {"heavy over a kerb", "heavy", 1.75, 0.70, 2, -1, 0xbb02a4f9f2629b02},
       {"default random start 3", "default", 1.75, 0.70, 0, 3, 0xc635c4210f392e73},
       {"default random start 17", "default", 1.60, 0.60, 0, 17, 0xdf3b0449fb009a77},
       {"energetic random start 5", "energetic", 1.75, 0.70, 0, 5, 0x230a1eec0d4ddba5},
-      {"cautious random start 9 on a ramp", "cautious", 1.75, 0.75, 1, 9, 0xe26c6095af24d443},
+      {"cautious random start 9 on a ramp", "cautious", 1.75, 0.75, 1, 9, 0x8e0a36fcad32cf27},
   };
   return walks;
 }
@@ -153,7 +153,7 @@ TEST(GoldenWalks, ACrowdHasTheRecordedBits) {
       add_walker(h, crowd[i]);
     crowd.clear_events();
   }
-  constexpr std::uint64_t kRecorded = 0xffd1dd06a1e27d42;
+  constexpr std::uint64_t kRecorded = 0x58532483ff33c79e;
   EXPECT_EQ(h.value, kRecorded) << "0x" << std::hex << h.value;
 }
 

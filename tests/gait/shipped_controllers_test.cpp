@@ -68,27 +68,33 @@ std::vector<double> samples(const fuzzy::InputVariable& v) {
 
 TEST(ShippedControllers, FuzzyliteReadsEveryFileAndGivesFuzzygaitsOutputs) {
   const std::vector<fs::path> files = shipped_fll_files();
-  // Every file a manifest names is among them, and beyond the sets' eight files each only the
-  // FLL files outside the sets' folders (such as the paper's example).
+  // Every file a manifest names is among them (the eight slots' and the terrain words'), and
+  // beyond those only the FLL files outside the sets' folders (such as the paper's example).
   const std::vector<fs::path> sets = set_directories();
   ASSERT_FALSE(sets.empty()) << "no controller sets under " << kControllers;
   std::set<fs::path> named;
+  std::size_t in_sets = 0;
   for (const fs::path& dir : sets) {
     const gait::ControllerSet set = gait::ControllerSet::load(dir);
     ASSERT_EQ(set.controllers.size(), static_cast<std::size_t>(gait::kSlotCount)) << dir;
-    for (const gait::Controller& c : set.controllers) {
+    auto name = [&](const gait::Controller& c) {
       const fs::path source = fs::weakly_canonical(c.source());
       EXPECT_TRUE(named.insert(source).second) << source << " named twice";
       EXPECT_TRUE(std::any_of(files.begin(), files.end(),
                               [&](const fs::path& f) { return fs::weakly_canonical(f) == source; }))
           << source << " is not among the shipped FLL files";
-    }
+    };
+    for (const gait::Controller& c : set.controllers)
+      name(c);
+    for (const gait::Controller& c : set.terrain_controllers)
+      name(c);
+    in_sets += set.controller_count();
   }
   const auto others =
       static_cast<std::size_t>(std::count_if(files.begin(), files.end(), [](const fs::path& f) {
         return !fs::exists(f.parent_path() / "manifest.json");
       }));
-  ASSERT_EQ(files.size(), sets.size() * gait::kSlotCount + others)
+  ASSERT_EQ(files.size(), in_sets + others)
       << "FLL files in a set's folder that its manifest does not name";
   for (const fs::path& file : files) {
     SCOPED_TRACE(file.string());

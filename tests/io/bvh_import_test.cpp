@@ -5,31 +5,30 @@
 // skips, saying why, when its importer is not there. The files stay in the build tree
 // (FUZZYGAIT_BVH_IMPORT_DIR, one folder per test) for a look.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <sstream>
 #include <string>
-#include <vector>
 
 #include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/gait/controllers.hpp"
 #include "fuzzygait/io/bvh.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
+#include "support/import_check.hpp"
 #include "support/text.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using fuzzygait::eval::Motion;
-using fuzzygait::rig::degrees;
+using fuzzygait::test::quote;
+using fuzzygait::test::read_table;
 using fuzzygait::test::read_text;
+using fuzzygait::test::run;
+using fuzzygait::test::Table;
 
 constexpr double kAngleTolerance = 0.01;     // degrees
 constexpr double kPositionTolerance = 1e-4;  // metres
@@ -69,50 +68,6 @@ const Walk& walk() {
   return w;
 }
 
-std::string quote(const std::string& text) {
-  std::string q = "'";
-  for (char c : text)
-    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-// Runs a shell command; its exit status, or -1 when it did not exit normally.
-int run(const std::string& command) {
-  const int status = std::system(command.c_str());
-  return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// A CSV of numbers with a header row.
-struct Table {
-  std::map<std::string, std::size_t> columns;
-  std::vector<std::vector<double>> rows;
-  double at(std::size_t row, const std::string& column) const {
-    const auto it = columns.find(column);
-    if (it == columns.end()) throw std::runtime_error("the importer wrote no column " + column);
-    return rows.at(row).at(it->second);
-  }
-};
-
-Table read_table(const fs::path& path) {
-  std::ifstream in(path);
-  Table table;
-  std::string line;
-  std::getline(in, line);
-  std::istringstream header(line);
-  for (std::string name; std::getline(header, name, ',');) {
-    table.columns.emplace(name, table.columns.size());
-  }
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    std::istringstream cells(line);
-    std::vector<double> row;
-    for (std::string cell; std::getline(cells, cell, ',');)
-      row.push_back(std::stod(cell));
-    table.rows.push_back(std::move(row));
-  }
-  return table;
-}
-
 // Compares what an importer saw with the walk's CSV, frame by frame, and prints the largest
 // differences.
 void expect_matches_walk(const Table& seen, const std::string& importer) {
@@ -120,49 +75,9 @@ void expect_matches_walk(const Table& seen, const std::string& importer) {
   const Motion& m = w.from_csv;
   ASSERT_EQ(seen.rows.size(), m.frames.size()) << importer << " read another number of frames";
   const double half_width = 0.5 * fuzzygait::io::bvh_hip_width(w.motion.segments);
-  struct Worst {
-    double error = 0.0;
-    std::string what;
-  };
-  Worst angle;
-  Worst position;
-  const auto note = [](Worst& worst, double error, const std::string& what, std::size_t frame) {
-    if (!(error <= worst.error)) worst = {error, what + " at frame " + std::to_string(frame)};
-  };
-  const char* sides[] = {"l", "r"};
-  for (std::size_t f = 0; f < m.frames.size(); ++f) {
-    const fuzzygait::eval::Frame& frame = m.frames[f];
-    const double tilt = degrees(frame.pose.pelvis_tilt);
-    const auto angle_is = [&](const std::string& column, double expected) {
-      note(angle, std::abs(std::remainder(seen.at(f, column) - expected, 360.0)), column, f);
-    };
-    const auto position_is = [&](const std::string& column, double expected_metres) {
-      note(position, std::abs(seen.at(f, column) / kUnitsPerMetre - expected_metres), column, f);
-    };
-    EXPECT_NEAR(seen.at(f, "time"), frame.time, 1e-4) << importer << " frame " << f;
-    angle_is("pelvis_tilt", tilt);
-    position_is("pelvis_x", 0.0);
-    position_is("pelvis_y", frame.pose.pelvis.y);
-    position_is("pelvis_z", frame.pose.pelvis.x);
-    for (std::size_t leg = 0; leg < 2; ++leg) {
-      const std::string s = sides[leg];
-      const fuzzygait::rig::LegAngles& a = frame.pose.legs[leg];
-      angle_is(s + "_thigh", degrees(a.hip) - tilt);
-      angle_is(s + "_hip", degrees(a.hip));
-      angle_is(s + "_knee", degrees(a.knee));
-      angle_is(s + "_ankle", degrees(a.ankle));
-      angle_is(s + "_toe", degrees(a.toe));
-      const fuzzygait::rig::LegPoints& p = frame.points[leg];
-      const std::pair<const char*, fuzzygait::rig::Point> joints[] = {
-          {"hip", p.hip}, {"knee", p.knee}, {"ankle", p.ankle}, {"ball", p.ball}, {"tip", p.tip}};
-      for (const auto& [joint, point] : joints) {
-        const std::string column = s + "_" + joint;
-        position_is(column + "_x", leg == 0 ? half_width : -half_width);  // left is +X
-        position_is(column + "_y", point.y);
-        position_is(column + "_z", point.x);  // forward is +Z
-      }
-    }
-  }
+  const fuzzygait::test::ImportDifferences worst =
+      fuzzygait::test::compare_with_walk(seen, m, half_width, kUnitsPerMetre);
+  const auto& [time, angle, position] = worst;
   std::cout << importer << ": " << seen.rows.size() << " frames; largest difference from the walk"
             << " CSV: " << angle.error << " deg (" << angle.what << "), " << position.error * 1e3
             << " mm (" << position.what << ")\n";
@@ -170,6 +85,7 @@ void expect_matches_walk(const Table& seen, const std::string& importer) {
                                   (std::ostringstream() << angle.error).str());
   ::testing::Test::RecordProperty("max_position_difference_m",
                                   (std::ostringstream() << position.error).str());
+  EXPECT_LE(time.error, 1e-4) << importer << ": " << time.what;
   EXPECT_LE(angle.error, kAngleTolerance) << importer << ": " << angle.what;
   EXPECT_LE(position.error, kPositionTolerance) << importer << ": " << position.what;
 }

@@ -225,7 +225,14 @@ TEST(TerrainCsv, RoundTripAndErrors) {
   EXPECT_THAT(error("x,y\n0,0\n"), HasSubstr("at least two points"));
   // Heights of 1e300 would make every contact figure nonsense: the ground ends at 1000 km.
   EXPECT_THAT(error("x,y\n0,0\n1,1e300\n"),
-              HasSubstr("t.csv:3: x and y must be within 1000 km of the origin"));
+              HasSubstr("t.csv:3: column 'y': 1e300 lies more than 1000 km from the origin"));
+  // Each bad value names its column; a wall, the line of its top.
+  EXPECT_THAT(error("x,y\n0,0\nabc,1\n"), HasSubstr("t.csv:3: column 'x': 'abc' is not a number"));
+  EXPECT_THAT(error("x,y\n0,0\n1,nan\n"), HasSubstr("t.csv:3: column 'y': nan is not a finite"));
+  EXPECT_THAT(error("x,y\n0,0\n1,0\n1,0.2\n"),
+              HasSubstr("t.csv:4: column 'x': 1 does not come after the x before it"));
+  EXPECT_THAT(error("x,y\n0,0\n1,0\n1.001,0.4\n2,0.4\n3,0.4\n"),
+              HasSubstr("t.csv:4: a wall 0.4 m high at x = 1.001 is taller than a leg climbs"));
   EXPECT_THROW(terrain::Terrain::polyline({{0.0, 0.0}, {2e6, 0.0}}), std::invalid_argument);
   EXPECT_NO_THROW(terrain::Terrain::polyline({{-1e6, -1e6}, {1e6, 1e6}}));
 }

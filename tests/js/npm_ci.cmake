@@ -1,7 +1,8 @@
-# CTest fixture: installs tests/js's npm packages (three.js, pinned by package-lock.json) into
-# the build tree with `npm ci`, once: it runs again only when the lock file changes.
+# CTest fixture: installs tests/js's npm packages (three.js and gltf-validator, pinned by
+# package-lock.json) into the build tree with `npm ci`, once: it runs again only when the lock
+# file changes.
 # Without npm, or when npm ci fails (offline and not in npm's cache), it says so and counts as
-# skipped; the tests that need three.js then skip too.
+# skipped; the tests that need the packages then skip too.
 #   cmake -DNPM=<npm or empty> -DDIR=<folder with package.json and package-lock.json> -P npm_ci.cmake
 if(NOT NPM)
   message("npm ci skipped: npm was not found when CMake configured (scripts/install-deps.sh)")
@@ -12,7 +13,7 @@ set(stamp "${DIR}/node_modules/.fuzzygait-lock-sha256")
 if(EXISTS "${stamp}")
   file(READ "${stamp}" installed_hash)
   if(installed_hash STREQUAL lock_hash)
-    message("three.js already installed in ${DIR}/node_modules (package-lock.json unchanged)")
+    message("npm packages already installed in ${DIR}/node_modules (package-lock.json unchanged)")
     return()
   endif()
 endif()
@@ -28,4 +29,4 @@ if(NOT result EQUAL 0)
   return()
 endif()
 file(WRITE "${stamp}" "${lock_hash}")
-message("npm ci installed three.js in ${DIR}/node_modules in ${seconds} s")
+message("npm ci installed the npm packages in ${DIR}/node_modules in ${seconds} s")

@@ -1,6 +1,7 @@
 // Learning: CMA-ES on functions whose minimum is known, the set's parameters (round trip,
-// rounding), the penalty for words that stop meaning what they say, the walk cost's terms, a
-// short tune that must not make the set worse, and the polish of the rounded values.
+// rounding), the penalty for words that stop meaning what they say, the walk cost's terms (held
+// to recorded bits; each weight pricing what it names, and refused out of range), a short tune
+// that must not make the set worse, and the polish of the rounded values.
 #include "fuzzygait/learn/tune.hpp"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <iterator>
 #include <limits>
 #include <set>
 #include <stdexcept>
@@ -15,9 +18,12 @@
 #include <utility>
 #include <vector>
 
+#include "fuzzygait/eval/evaluation.hpp"
+#include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/gait/controllers.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/learn/cmaes.hpp"
+#include "support/bits.hpp"
 #include "support/walks.hpp"
 
 namespace fuzzygait {
@@ -208,6 +214,285 @@ TEST(WalkCost, TheAccelerationLimitCostsOnlyWhenSet) {
   EXPECT_LT(limited - unlimited, 60.0);
 }
 
+// The normative curves of the recorded costs, loaded once: their conditions point at them.
+struct References {
+  eval::Normative free = io::load_normative("schwartz2008_free");
+  eval::Normative slow = io::load_normative("schwartz2008_slow");
+  eval::Normative fast = io::load_normative("schwartz2008_fast");
+};
+
+const References& references() {
+  static const References r;
+  return r;
+}
+
+// The default set with every parameter (velocities, inertia, knots) times `factor`.
+gait::ControllerSet scaled_default(double factor) {
+  const learn::SetParameters p(test::default_set());
+  std::vector<double> v = p.values();
+  for (double& x : v)
+    x *= factor;
+  return p.apply(v);
+}
+
+// The whole acceptance grid and two random starts, walked 6 s instead of 10: long enough for
+// every walk of the default set.
+learn::TuneOptions grid_options() {
+  learn::TuneOptions o;
+  o.conditions = learn::grid_conditions(references().free, references().slow, references().fast);
+  o.recovery_seeds = learn::recovery_seeds(2);
+  o.duration = 6.0;
+  return o;
+}
+
+// Bounds that a set off its tune crosses, so that the terms priced above them count too.
+learn::TuneOptions strained(learn::TuneOptions o) {
+  o.acceleration_ratio_max = 2.0;
+  o.heel_bounce_max = 0.01;
+  o.pelvis_range_min = 20.0;
+  o.pelvis_range_max = 60.0;
+  return o;
+}
+
+struct CostCase {
+  const char* name;
+  gait::ControllerSet set;
+  learn::TuneOptions options;
+  double recorded;  // its walk_cost() as recorded (GCC 12, x86-64)
+};
+
+// Between them, these walks give every term of the cost a part: the default set under the
+// default bounds, sets slower (x0.7) and faster (x1.5) than their tune under strained bounds
+// (words past their bound, unsettled random starts, toes scuffing, the knee peaking early and
+// late, slip, ...), a set whose slowest walks do not fit in 6 s, and a wild one (x10) that
+// falls over from its random starts.
+const std::vector<CostCase>& cost_cases() {
+  static const std::vector<CostCase> cases = [] {
+    learn::TuneOptions main_walk;
+    main_walk.conditions = {learn::main_condition(references().free)};
+    learn::TuneOptions wild = main_walk;
+    wild.recovery_seeds = learn::recovery_seeds(2);
+    return std::vector<CostCase>{
+        {"default set, no walks", test::default_set(), learn::TuneOptions{}, 0x1.0555555555555p+3},
+        {"default set, main walk", test::default_set(), main_walk, 0x1.f09dfb21fe122p+5},
+        {"default set, grid", test::default_set(), grid_options(), 0x1.0cdc0f5f434f7p+7},
+        {"slower set, strained grid", scaled_default(0.7), strained(grid_options()),
+         0x1.246be9e2b150ep+13},
+        {"faster set, strained grid", scaled_default(1.5), strained(grid_options()),
+         0x1.0c642c68aa446p+13},
+        {"cautious set, grid", gait::ControllerSet::builtin("cautious"), grid_options(),
+         0x1.a51c496e38af3p+12},
+        {"wild set, main walk", scaled_default(10.0), wild, 0x1.99e0d890ff932p+14},
+    };
+  }();
+  return cases;
+}
+
+// The cost's weights became named fields without changing what it computes: each case costs the
+// bits recorded from the cost with its weights written inline. A change that alters the cost on
+// purpose records new bits and says why.
+TEST(WalkCost, DefaultWeightsCostTheRecordedBits) {
+  for (const CostCase& c : cost_cases()) {
+    const double cost = learn::walk_cost(c.set, c.options);
+    char bits[64];
+    std::snprintf(bits, sizeof bits, "%a", cost);
+    EXPECT_TRUE(test::same_bits(cost, c.recorded)) << c.name << ": " << bits;
+  }
+}
+
+// Every field of CostWeights, named as validate() names it.
+struct WeightField {
+  const char* name;
+  double learn::CostWeights::*field;
+};
+constexpr WeightField kWeightFields[] = {
+    {"words", &learn::CostWeights::words},
+    {"words_over_bound", &learn::CostWeights::words_over_bound},
+    {"word_unit", &learn::CostWeights::word_unit},
+    {"unsound_start", &learn::CostWeights::unsound_start},
+    {"unsettled_step", &learn::CostWeights::unsettled_step},
+    {"failed_walk", &learn::CostWeights::failed_walk},
+    {"step_error", &learn::CostWeights::step_error},
+    {"step_error_over_bound", &learn::CostWeights::step_error_over_bound},
+    {"toe_scuff", &learn::CostWeights::toe_scuff},
+    {"toe_clearance_wanted", &learn::CostWeights::toe_clearance_wanted},
+    {"cycle_time_sd", &learn::CostWeights::cycle_time_sd},
+    {"step_length_sd", &learn::CostWeights::step_length_sd},
+    {"stance_outside_range", &learn::CostWeights::stance_outside_range},
+    {"pelvis_outside_range", &learn::CostWeights::pelvis_outside_range},
+    {"cycle_time_outside_range", &learn::CostWeights::cycle_time_outside_range},
+    {"velocity_jump", &learn::CostWeights::velocity_jump},
+    {"velocity_jump_ratio_free", &learn::CostWeights::velocity_jump_ratio_free},
+    {"slip", &learn::CostWeights::slip},
+    {"slip_free", &learn::CostWeights::slip_free},
+    {"slip_over_bound", &learn::CostWeights::slip_over_bound},
+    {"penetration", &learn::CostWeights::penetration},
+    {"heel_bounce_over_bound", &learn::CostWeights::heel_bounce_over_bound},
+    {"curve_rmse", &learn::CostWeights::curve_rmse},
+    {"thigh_knee_uncorrelated", &learn::CostWeights::thigh_knee_uncorrelated},
+    {"ankle_uncorrelated", &learn::CostWeights::ankle_uncorrelated},
+    {"curve_rmse_over_bound", &learn::CostWeights::curve_rmse_over_bound},
+    {"acceleration_over_bound", &learn::CostWeights::acceleration_over_bound},
+    {"knee_peak_outside_range", &learn::CostWeights::knee_peak_outside_range},
+    {"knee_peak_timing_outside_range", &learn::CostWeights::knee_peak_timing_outside_range},
+    {"toe_off_neutral", &learn::CostWeights::toe_off_neutral},
+};
+static_assert(std::size(kWeightFields) * sizeof(double) == sizeof(learn::CostWeights),
+              "the table lists every field of CostWeights");
+
+// The fields that are thresholds or units rather than prices, and those of them that divide
+// (which validate() refuses at 0, as it does a failed walk that costs nothing).
+bool is_threshold(const std::string& name) {
+  return name == "word_unit" || name == "toe_clearance_wanted" ||
+         name == "velocity_jump_ratio_free" || name == "slip_free";
+}
+bool must_be_positive(const std::string& name) {
+  return name == "word_unit" || name == "toe_clearance_wanted" || name == "failed_walk";
+}
+
+double cost_with(const CostCase& c, double learn::CostWeights::*field, double value) {
+  learn::TuneOptions o = c.options;
+  o.weights.*field = value;
+  return learn::walk_cost(c.set, o);
+}
+
+// Doubling a weight doubles the term it prices and 0 removes it, whatever the other terms:
+// walk_cost is linear in each weight. Each weight is checked on the first recorded case where
+// its term shows, and every weight's term shows in one.
+TEST(WalkCost, EachWeightScalesItsOwnTermAlone) {
+  std::vector<double> at_defaults;
+  for (const CostCase& c : cost_cases())
+    at_defaults.push_back(learn::walk_cost(c.set, c.options));
+  for (const WeightField& f : kWeightFields) {
+    if (is_threshold(f.name) || std::string(f.name) == "failed_walk") continue;  // below
+    // The walks' penetration is rounding error (under 1e-15 m): a large weight shows it.
+    const double weight =
+        std::string(f.name) == "penetration" ? 1e15 : learn::CostWeights{}.*f.field;
+    bool shown = false;
+    for (std::size_t k = 0; k < cost_cases().size(); ++k) {
+      const CostCase& c = cost_cases()[k];
+      const double without = cost_with(c, f.field, 0.0);
+      const double with =
+          weight == learn::CostWeights{}.*f.field ? at_defaults[k] : cost_with(c, f.field, weight);
+      const double term = with - without;
+      EXPECT_GE(term, 0.0) << f.name << " on " << c.name;
+      if (!(term > 1e-6 * std::abs(with))) continue;
+      const double doubled = cost_with(c, f.field, 2.0 * weight);
+      EXPECT_NEAR(doubled - without, 2.0 * term, 1e-9 * std::abs(doubled))
+          << f.name << " on " << c.name;
+      shown = true;
+      break;
+    }
+    EXPECT_TRUE(shown) << f.name << " prices nothing in the recorded cases";
+  }
+}
+
+// Walks the main condition as walk_cost() does and measures it.
+eval::GaitReport main_walk_report(const gait::ControllerSet& set) {
+  const learn::TuneOptions o;
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::Walker walker = test::make_walker(ground, 0.70, 1.75, {}, set);
+  const eval::Motion motion = eval::record(walker, o.duration, o.fps);
+  return eval::evaluate(motion, ground, &references().free, 0.70);
+}
+
+// On the default set's main walk (realism weight 1), each weight charges what its name says, in
+// the unit its comment gives, and each threshold moves where its charge begins.
+TEST(WalkCost, WeightsChargeWhatTheyName) {
+  const CostCase& main = cost_cases()[1];
+  ASSERT_EQ(std::string(main.name), "default set, main walk");
+  ASSERT_EQ(main.options.conditions.size(), 1u);
+  const eval::GaitReport r = main_walk_report(main.set);
+  const learn::CostWeights w;
+  using W = learn::CostWeights;
+  // The cost less the same cost with `field` at 0: the term `field` prices, at `options`.
+  auto term = [&main](double W::*field, learn::TuneOptions options) {
+    const double with = learn::walk_cost(main.set, options);
+    options.weights.*field = 0.0;
+    return with - learn::walk_cost(main.set, options);
+  };
+  auto with_weights = [&main](const learn::CostWeights& weights) {
+    learn::TuneOptions o = main.options;
+    o.weights = weights;
+    return o;
+  };
+  const double tolerance = 1e-9 * main.recorded;
+  EXPECT_NEAR(term(&W::step_error, main.options), 2.0 * r.step_error_percent.value(), tolerance);
+  EXPECT_NEAR(term(&W::curve_rmse, main.options),
+              2.0 * (r.thigh_score->rmse + r.knee_score->rmse + r.ankle_score->rmse), tolerance);
+  EXPECT_NEAR(term(&W::ankle_uncorrelated, main.options), 20.0 * (1.0 - r.ankle_score->pearson),
+              tolerance);
+  // The main walk's toes clear the ground by over 40 mm: asked for 50 mm, they fall short.
+  ASSERT_GT(r.min_toe_clearance, w.toe_clearance_wanted);
+  EXPECT_EQ(term(&W::toe_scuff, main.options), 0.0);
+  learn::CostWeights wanting = w;
+  wanting.toe_clearance_wanted = 0.05;
+  EXPECT_NEAR(term(&W::toe_scuff, with_weights(wanting)),
+              200.0 * (0.05 - r.min_toe_clearance) / 0.05, tolerance);
+  // Its slip (0.33 mm a frame) is under the free 0.5 mm; with none free, all of it costs.
+  ASSERT_LT(r.max_slip, w.slip_free);
+  EXPECT_EQ(term(&W::slip, main.options), 0.0);
+  learn::CostWeights strict = w;
+  strict.slip_free = 0.0;
+  EXPECT_NEAR(term(&W::slip, with_weights(strict)), 2000.0 * r.max_slip, tolerance);
+  // Its velocity jumps are under 1.2 typical changes; with no ratio free, all of it costs.
+  const double jump_ratio = r.max_velocity_jump / std::max(r.typical_velocity_change, 1.0);
+  ASSERT_LT(jump_ratio, w.velocity_jump_ratio_free);
+  EXPECT_EQ(term(&W::velocity_jump, main.options), 0.0);
+  strict.velocity_jump_ratio_free = 0.0;
+  EXPECT_NEAR(term(&W::velocity_jump, with_weights(strict)), 10.0 * jump_ratio, tolerance);
+  // The knee peaks at 72 % of the cycle, inside 69-77 %; a window ending at 50 % charges the
+  // 22 % it is late by.
+  ASSERT_EQ(r.knee_peak_percent, 72.0);
+  EXPECT_EQ(term(&W::knee_peak_timing_outside_range, main.options), 0.0);
+  learn::TuneOptions early = main.options;
+  early.knee_peak_percent_min = 40.0;
+  early.knee_peak_percent_max = 50.0;
+  EXPECT_NEAR(term(&W::knee_peak_timing_outside_range, early), 22.0, tolerance);
+}
+
+// The words are counted in units of word_unit of each output's range: a coarser unit counts a
+// broken word as less, and walk_cost() charges the count in the unit it is given.
+TEST(WalkCost, TheWordUnitScalesTheWordPenalty) {
+  const gait::ControllerSet set = scaled_default(1.5);
+  learn::TuneOptions o;  // no walks: the words alone
+  const double words = learn::word_penalty(set);
+  EXPECT_EQ(learn::word_penalty(set, o.weights), words);
+  o.weights.word_unit = 0.04;
+  const double coarse = learn::word_penalty(set, o.weights);
+  EXPECT_LT(coarse, words);
+  EXPECT_GT(coarse, 0.0);
+  o.word_penalty_max = 1e9;
+  EXPECT_EQ(learn::walk_cost(set, o), 10.0 * coarse);
+  // A finer unit lets a "stay" or "hold" move less for free and counts each broken word as more.
+  const gait::ControllerSet& base = test::default_set();
+  learn::CostWeights half = o.weights;
+  half.word_unit = 0.01;
+  EXPECT_GT(learn::word_penalty(base, half), learn::word_penalty(base));
+}
+
+TEST(CostWeights, ValidateNamesTheWeightOutOfRange) {
+  for (const WeightField& f : kWeightFields) {
+    for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity(), -1.0, 0.0}) {
+      learn::TuneOptions o;
+      o.weights.*f.field = bad;
+      if (bad == 0.0 && !must_be_positive(f.name)) {
+        EXPECT_NO_THROW(learn::validate(o)) << f.name << " = 0";
+        continue;
+      }
+      try {
+        learn::validate(o);
+        ADD_FAILURE() << f.name << " = " << bad << " passed";
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("weights." + std::string(f.name) + " "),
+                  std::string::npos)
+            << e.what();
+      }
+      EXPECT_THROW(learn::walk_cost(test::default_set(), o), std::invalid_argument) << f.name;
+    }
+  }
+}
+
 // A tune of a few generations on the main walk against `reference` (which must outlive the
 // options), small steps: quick enough for a unit test.
 learn::TuneOptions short_tune(const eval::Normative& reference, int generations,
@@ -284,6 +569,12 @@ TEST(TuneOptions, OutOfRangeFieldsAreNamed) {
       {[](learn::TuneOptions& o, double v) { o.cycle_time_max = v; }, 0.5, "cycle time range"},
       {[](learn::TuneOptions& o, double v) { o.stance_min = v; }, 80.0, "stance range"},
       {[](learn::TuneOptions& o, double v) { o.knee_peak_max = v; }, 1e308, "knee peak range"},
+      {[](learn::TuneOptions& o, double v) { o.knee_peak_percent_min = v; }, nan,
+       "knee peak timing range"},
+      {[](learn::TuneOptions& o, double v) { o.knee_peak_percent_max = v; }, 60.0,
+       "knee peak timing range"},
+      {[](learn::TuneOptions& o, double v) { o.knee_peak_percent_max = v; }, 101.0,
+       "knee peak timing range"},
       {[](learn::TuneOptions& o, double v) { o.pelvis_range_max = v; }, -10.0, "pelvis range"},
       {[](learn::TuneOptions& o, double v) { o.minimum_inertia = v; }, -1.0, "minimum inertia"},
       {[](learn::TuneOptions& o, double v) { o.acceleration_ratio_max = v; }, nan,
@@ -317,6 +608,10 @@ TEST(WalkCost, CountsTheWalksThatFailed) {
             10.0 * learn::word_penalty(test::default_set()) + 1000.0);
   EXPECT_EQ(failed, 1);
   EXPECT_NE(report.find("failed"), std::string::npos);
+  // A failed walk costs weights.failed_walk.
+  o.weights.failed_walk = 250.0;
+  EXPECT_EQ(learn::walk_cost(test::default_set(), o),
+            10.0 * learn::word_penalty(test::default_set()) + 250.0);
   o.duration = 10.0;
   learn::walk_cost(test::default_set(), o, nullptr, &failed);
   EXPECT_EQ(failed, 0);

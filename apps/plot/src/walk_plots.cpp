@@ -333,6 +333,17 @@ double lowest_ground(const terrain::Terrain& terrain, double x0, double x1) {
   return lowest;
 }
 
+// The lowest and highest ground between x0 and x1.
+std::pair<double, double> ground_span(const terrain::Terrain& terrain, double x0, double x1) {
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  for (const rig::Point& p : terrain.profile(x0, x1)) {
+    low = std::min(low, p.y);
+    high = std::max(high, p.y);
+  }
+  return {low, high};
+}
+
 // The ground between x0 and x1, moved by shift, filled down to `floor` under its surface line,
 // and optionally hatched every `hatch` metres (it shows the ground moving under a following
 // view).
@@ -894,6 +905,17 @@ svg::Figure plot_walk_animation(const eval::Motion& motion, const terrain::Terra
     x1 = std::max(start.x, finish.x) + width;
     bottom = start.y - leg - 0.15;
     top = start.y + (1.0 - kHipHeight) * stature + 0.12;
+    // Off level ground, the ground in view at the start and at the end of the loop (seen from
+    // the view as it has moved), within a few leg lengths: stairs behind a climber and ahead of a
+    // descender show.
+    const double rise = finish.y - start.y;
+    const auto [low_start, high_start] =
+        ground_span(terrain, start.x - width / 2, start.x + width / 2);
+    const auto [low_end, high_end] =
+        ground_span(terrain, finish.x - width / 2, finish.x + width / 2);
+    bottom =
+        std::max(std::min(bottom, std::min(low_start, low_end - rise) - 0.1), bottom - 2.0 * leg);
+    top = std::min(std::max(top, std::max(high_start, high_end - rise) + 0.1), top + 2.0 * leg);
     panel.x_range(start.x - width / 2, start.x + width / 2);
   } else {
     panel.x_range(x0, x1);

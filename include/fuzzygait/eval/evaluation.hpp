@@ -66,7 +66,7 @@ std::array<JointSmoothness, 4> joint_smoothness(const Motion& motion, std::size_
 double cycle_acceleration_rms(const Curve& curve, double cycle_time);
 
 struct GaitReport {
-  int cycles = 0;               // complete left cycles measured (the first is skipped)
+  int cycles = 0;               // complete left cycles measured
   double cycle_time = 0.0;      // s
   double cycle_time_sd = 0.0;   // s, between cycles: regularity
   double cadence = 0.0;         // steps per minute
@@ -99,9 +99,10 @@ struct GaitReport {
   std::optional<JointScore> ankle_score;
 };
 
-// Measures the walk. `reference` adds the realism scores; `commanded_step` the step error.
-// Throws std::invalid_argument when the walk has fewer than two complete left cycles after the
-// first (nothing to measure).
+// Measures the walk over its complete left cycles: for a walker's motion those after the first
+// (the start from standing), for captured motion every one. `reference` adds the realism scores;
+// `commanded_step` the step error. Throws std::invalid_argument when there are fewer than two
+// such cycles, or fewer than one in captured motion (a clip may hold no more).
 GaitReport evaluate(const Motion& motion, const terrain::Terrain& terrain,
                     const Normative* reference = nullptr,
                     std::optional<double> commanded_step = std::nullopt);

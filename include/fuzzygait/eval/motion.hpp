@@ -22,6 +22,9 @@ struct Motion {
   double fps = 0.0;
   rig::Segments segments;
   std::vector<Frame> frames;
+  // Motion capture: in its stride from the first frame. A walker's motion (false) starts from
+  // standing, and evaluate() leaves its first cycle out.
+  bool captured = false;
 };
 
 // The walker as it stands now: its pose, foot points and contacts, stamped with `time` (s).

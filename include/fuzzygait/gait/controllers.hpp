@@ -37,8 +37,18 @@ enum class Metric : std::uint8_t {
   Ankle,       // "ankle": ankle dorsiflexion
   Toe,         // "toe": MTP extension
   Sole,        // "sole": angle of the sole to the ground surface under it, toes up +
+  // "incline": the pitch of the ground the body is walking on, uphill +, degrees: from the
+  // ground's pitches at the feet's footholds (Terrain::pitch: a ramp's slope, a stair's rise over
+  // its tread). 0 on level ground, 10 on a 10 deg ramp, 31 up stairs of 0.17 x 0.28 m.
+  Incline,
+  // "stairs": 1 where that pitch is a stair's (a foothold on a tread), 0 on level ground and ramps.
+  Stairs,
 };
-inline constexpr int kMetricCount = 7;
+inline constexpr int kMetricCount = 9;
+
+// The kinds of ground a controller set may have words for (the manifest's "terrain").
+enum class Ground : std::uint8_t { Slopes, Stairs };
+inline constexpr int kGroundCount = 2;
 std::string_view metric_name(Metric metric);
 std::optional<Metric> metric_from_name(std::string_view name);
 
@@ -99,9 +109,52 @@ struct ControllerSet {
   double shortest_step = 0.46;
   std::vector<Controller> controllers;  // indexed by slot()
 
+  // How the controllers change with the ground (the manifest's "terrain": "slopes" for level
+  // ground and ramps, "stairs"): words for the incline (such as down, level, up) peaking at given
+  // degrees, a strong triangular partition, and for a slot the controller file of a word; a word a
+  // slot names no file for uses the slot's own controller. A slot's command is the words'
+  // commands weighted by their degrees (a fuzzy rule "if incline is up then the knee follows
+  // stance_knee_up"). No words: the slots' controllers everywhere.
+  struct GroundWords {
+    std::vector<std::string> words;  // in order of their peaks
+    std::vector<double> peaks;       // degrees, increasing
+    // Words under which a swinging leg's delta runs to the knee's end position, the paper's
+    // ascent metric: the thigh where the leg, knee bent, puts the heel on the target (up stairs);
+    // under the others, where the straight leg's heel points at it.
+    std::vector<bool> ascent;
+    // How bent (radians) each word lands a swinging leg's knee: its delta runs to where the leg,
+    // knee bent so, points its heel at the target (down stairs, the thigh reaches further
+    // forward to carry the foot over the edge). 0: a straight leg, as on level ground.
+    std::vector<double> landing_knee;
+    // [slot][word]: index into terrain_controllers, or -1 for the slot's own controller.
+    std::array<std::vector<int>, kSlotCount> of_slot;
+    bool empty() const { return words.empty(); }
+  };
+  std::array<GroundWords, kGroundCount> ground;  // [Ground]
+  std::vector<Controller> terrain_controllers;   // the terrain files
+  bool has_terrain_words() const { return !ground[0].empty() || !ground[1].empty(); }
+
   const Controller& at(LegPhase phase, Joint joint) const {
     return controllers[static_cast<std::size_t>(slot(phase, joint))];
   }
+  // The controller of `slot` for word `word` of `ground` (its own for a word without a file).
+  const Controller& controller(int slot, Ground ground, std::size_t word) const;
+  // Every controller: the slots' and the terrain's.
+  std::size_t controller_count() const { return controllers.size() + terrain_controllers.size(); }
+  // The command of `slot` for these metrics: its controller's, or on terrain (metrics incline and
+  // stairs) the words' blend. `workspaces` holds one workspace per controller, in
+  // controller_count() order (slots', then terrain's).
+  double evaluate(int slot, const MetricValues& metrics,
+                  std::vector<fuzzy::Workspace>& workspaces) const;
+  // Whether for these metrics every slot of `phase` commands with its own controller alone (no
+  // terrain word with a file for one of them fires): then evaluate() is its controller's.
+  bool own_controllers_at(LegPhase phase, const MetricValues& metrics) const;
+  // The degree (0 to 1) to which `slot` commands with its own controller for these metrics: 1 on
+  // level ground, less where terrain words with files of their own fire.
+  double own_degree(int slot, const MetricValues& metrics) const;
+  // How far the ascent metric holds (0 to 1), and the landing knee (radians), for these metrics.
+  double ascent_weight(const MetricValues& metrics) const;
+  double landing_knee(const MetricValues& metrics) const;
 
   // Reads DIR/manifest.json and the FLL files it names.
   static ControllerSet load(const std::filesystem::path& directory);

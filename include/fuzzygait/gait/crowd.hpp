@@ -62,6 +62,7 @@ class Crowd {
   void command(std::size_t first, std::size_t count);
   void place_legs(std::size_t first, std::size_t count);
 
+  const ControllerSet* controllers_;
   std::vector<Walker> walkers_;
   std::vector<detail::StepData> steps_;  // a block's
   bool batched_ = false;

@@ -56,10 +56,12 @@ struct LegState {
   // Thigh inclination where delta = +1 (radians): in stance set at the strike from the step
   // length; in swing rewritten every step, where a straight leg's heel would point at the target.
   double sweep_end = 0.0;
-  double target_x = 0.0;     // swing: where the heel should land
-  double swing_start = 0.0;  // swing: when the foot left the ground (s)
-  double strike_x = 0.0;     // stance: where the heel landed
-  double delta = 0.0;        // the leg's last progress metric
+  double target_x = 0.0;       // swing: where the heel should land
+  double swing_start = 0.0;    // swing: when the foot left the ground (s)
+  double strike_x = 0.0;       // stance: where the heel landed
+  double delta = 0.0;          // the leg's last progress metric
+  double step_from_x = 0.0;    // where the heel stood before this leg's current or last step
+  std::size_t target_run = 0;  // swing: the run of the ground (a tread) the foot aims at
 };
 
 // Everything that changes while walking: plain data, so many characters pack into arrays.
@@ -174,6 +176,7 @@ class Walker {
   double follow_step_ = 0.0;  // the h of follow_
   double follow_ = 0.0;       // share of the way a joint's velocity goes to its command in h
   double heel_offset_ = 0.0;
+  double reach_ = 0.0;  // hip to heel of the straight leg, neutral ankle
   WalkerState state_;
   // One per slot, on the heap: the fast path never reads them, and a crowd streams its walkers
   // through the caches every frame.

@@ -1,5 +1,6 @@
 // The walk CSV: one row per frame (angles in degrees, positions in metres, x forward, y up), and
-// the terrain CSV (the ground as an x,y polyline).
+// the terrain CSV (the ground as an x,y polyline). Captured motion (eval::Motion::captured) has
+// one more column after the others, `captured`, 1 on every row.
 #pragma once
 
 #include <iosfwd>

@@ -38,6 +38,61 @@ std::vector<WalkCondition> grid_conditions(const eval::Normative& reference,
 // Seeds of `count` random starts that must settle into the gait (TuneOptions::recovery_seeds).
 std::vector<std::uint64_t> recovery_seeds(int count);
 
+// What walk_cost() charges, term by term: every weight of the cost, and every threshold where a
+// gentle charge begins (the bounds where the steep ones begin are TuneOptions'). A weight is cost
+// per unit of what it prices, in the unit its comment names; 0 switches its term off. validate()
+// refuses a field that is negative or not finite, and a word_unit, toe_clearance_wanted or
+// failed_walk of 0.
+struct CostWeights {
+  // The set's words (word_penalty()).
+  double words = 10.0;              // per unit of word penalty
+  double words_over_bound = 100.0;  // per unit of word penalty above TuneOptions::word_penalty_max
+  // Share of an output's range that is one unit of word penalty, and that a "stay" or "hold"
+  // word may move for free.
+  double word_unit = 0.02;
+  // Random starts (TuneOptions::recovery_seeds).
+  // Per start whose walk goes unsound (eval::RecoveryReport::sound) or cannot be walked.
+  double unsound_start = 100.0;
+  // Per step of a start, after the third up to the eighth, missing or more than 5 % off the
+  // commanded length (eval::RecoveryReport::unsettled_steps).
+  double unsettled_step = 5.0;
+  // Every condition's walk.
+  double failed_walk = 1000.0;  // per condition that cannot be walked, or costs NaN or infinity
+  double step_error = 2.0;      // per % the steps miss the commanded length by
+  double step_error_over_bound = 20.0;  // per % of step error above TuneOptions::step_error_max
+  // For a toe with no mid-swing clearance at all; pro rata for one under toe_clearance_wanted.
+  double toe_scuff = 200.0;
+  double toe_clearance_wanted = 0.012;     // m of mid-swing toe clearance that costs nothing
+  double cycle_time_sd = 100.0;            // per s of cycle time SD between cycles
+  double step_length_sd = 100.0;           // per commanded step length of step length SD
+  double stance_outside_range = 2.0;       // per % of stance share outside TuneOptions' range
+  double pelvis_outside_range = 0.5;       // per mm of pelvis travel outside TuneOptions' range
+  double cycle_time_outside_range = 50.0;  // per s of cycle time outside TuneOptions' range
+  // Per unit of velocity jump ratio (the largest change of a joint's velocity at a phase switch,
+  // in typical frame-to-frame changes) above velocity_jump_ratio_free.
+  double velocity_jump = 10.0;
+  double velocity_jump_ratio_free = 1.2;    // velocity jump ratio that costs nothing
+  double slip = 2000.0;                     // per m a frame of foot slip above slip_free
+  double slip_free = 0.0005;                // m a frame of foot slip that costs nothing
+  double slip_over_bound = 20000.0;         // per m a frame of slip above TuneOptions::slip_max
+  double penetration = 1000.0;              // per m a foot point goes below the ground
+  double heel_bounce_over_bound = 20000.0;  // per m above TuneOptions::heel_bounce_max
+  // Realism, on conditions with a reference, all times WalkCondition::realism_weight; the terms
+  // over a bound on conditions with enforce_bounds only.
+  double curve_rmse = 2.0;                // per deg of RMSE of the thigh, knee and ankle each
+  double thigh_knee_uncorrelated = 10.0;  // per unit of 1 - r of the thigh's and knee's curve each
+  double ankle_uncorrelated = 20.0;       // per unit of 1 - r of the ankle's curve
+  double curve_rmse_over_bound = 10.0;    // per deg of a curve's RMSE above its TuneOptions bound
+  // Per unit of acceleration ratio of the thigh and the knee each above
+  // TuneOptions::acceleration_ratio_max.
+  double acceleration_over_bound = 10.0;
+  double knee_peak_outside_range = 1.0;  // per deg of peak knee flexion outside TuneOptions' range
+  double knee_peak_timing_outside_range = 1.0;  // per % of cycle outside TuneOptions' range
+  // Per deg of toe angle off neutral, summed over the mean cycle's samples while the foot is
+  // flat (10-30 %) and before landing (86-100 %).
+  double toe_off_neutral = 0.1;
+};
+
 struct TuneOptions {
   std::vector<WalkCondition> conditions;
   std::vector<std::uint64_t> recovery_seeds;  // random starts that must settle into the gait
@@ -46,12 +101,14 @@ struct TuneOptions {
   double cycle_time_min = 1.0;
   double cycle_time_max = 1.2;
   double minimum_inertia = 0.02;  // s
-  // Ranges the walk should stay in: stance share (%), peak swing knee flexion (deg), vertical
-  // travel of the pelvis over a cycle (mm). Styles move them.
+  // Ranges the walk should stay in: stance share (%), peak swing knee flexion (deg) and where in
+  // the cycle it peaks (%), vertical travel of the pelvis over a cycle (mm). Styles move them.
   double stance_min = 58.0;
   double stance_max = 64.0;
   double knee_peak_min = 55.0;
   double knee_peak_max = 70.0;
+  double knee_peak_percent_min = 69.0;
+  double knee_peak_percent_max = 77.0;
   double pelvis_range_min = 0.0;
   double pelvis_range_max = 1e9;
   // Curve errors (deg RMSE) above which a condition with enforce_bounds (the main one) pays
@@ -69,10 +126,11 @@ struct TuneOptions {
   // reference's at the same cadence, above which a condition with enforce_bounds pays: how much
   // snappier than people the joints may move (their ease in and out). No limit by default.
   double acceleration_ratio_max = std::numeric_limits<double>::infinity();
-  // Heel bounce (eval::GaitReport::max_heel_bounce, m) above which every condition pays, 20 a
-  // millimetre: a heel that lifts after foot flat and drops back before heel-off. No limit by
-  // default.
+  // Heel bounce (eval::GaitReport::max_heel_bounce, m) above which every condition pays
+  // (weights.heel_bounce_over_bound): a heel that lifts after foot flat and drops back before
+  // heel-off. No limit by default.
   double heel_bounce_max = std::numeric_limits<double>::infinity();
+  CostWeights weights;  // what each term of walk_cost() charges
   double fps = 120.0;
   int generations = 200;
   // Then this many generations on the values rounded to `digits` significant digits, the ones
@@ -114,15 +172,17 @@ class SetParameters {
 };
 
 // How far the set's values stray from what their words promise ("stay" near zero, "flex"
-// positive, "fast" faster than the plain word...); 0 when every word is kept.
-double word_penalty(const gait::ControllerSet& set);
+// positive, "fast" faster than the plain word...), in units of weights.word_unit of each
+// output's range; 0 when every word is kept.
+double word_penalty(const gait::ControllerSet& set, const CostWeights& weights = CostWeights{});
 
 // Throws std::invalid_argument naming the first field of `options` out of its range (NaN, a
-// reversed range, a CMA-ES step of zero, ...). walk_cost() and tune() call it.
+// reversed range, a CMA-ES step of zero, a negative weight, ...). walk_cost() and tune() call it.
 void validate(const TuneOptions& options);
 
-// The tuning objective: lower is better. `report` receives a one-line summary per condition;
-// `failed_walks`, how many conditions could not be walked at all (each costs 1000).
+// The tuning objective, priced by options.weights: lower is better. `report` receives a one-line
+// summary per condition; `failed_walks`, how many conditions could not be walked at all (each
+// costs weights.failed_walk).
 double walk_cost(const gait::ControllerSet& set, const TuneOptions& options,
                  std::string* report = nullptr, int* failed_walks = nullptr);
 

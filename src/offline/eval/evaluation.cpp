@@ -235,16 +235,21 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
     }
   }
 
-  // Cycles of the left leg, heel strike to heel strike; the first is skipped.
+  // Cycles of the left leg, heel strike to heel strike. A walker's first is its start from
+  // standing, left out; a clip is in its stride throughout and may hold a single cycle.
   const std::vector<std::size_t> left = heel_strikes(m, rig::Side::Left);
   const std::vector<std::size_t> right = heel_strikes(m, rig::Side::Right);
+  const std::size_t first_cycle = m.captured ? 0 : 1;
+  const std::size_t fewest_cycles = m.captured ? 1 : 2;
   std::vector<std::pair<std::size_t, std::size_t>> cycles;
-  for (std::size_t k = 1; k + 1 < left.size(); ++k)
+  for (std::size_t k = first_cycle; k + 1 < left.size(); ++k)
     cycles.emplace_back(left[k], left[k + 1]);
   r.cycles = static_cast<int>(cycles.size());
-  if (cycles.size() < 2) {
-    throw std::invalid_argument("fewer than two complete gait cycles to measure (found " +
-                                std::to_string(cycles.size()) + " after the first)");
+  if (cycles.size() < fewest_cycles) {
+    throw std::invalid_argument(m.captured
+                                    ? "no complete gait cycle to measure"
+                                    : "fewer than two complete gait cycles to measure (found " +
+                                          std::to_string(cycles.size()) + " after the first)");
   }
   std::vector<double> durations;
   std::vector<double> stance;

@@ -2,93 +2,19 @@
 
 #include <charconv>
 #include <cmath>
-#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
+
+#include "offline/io/skeleton.hpp"
 
 namespace fuzzygait::io {
 namespace {
 
-// Stature proportions (Winter 2009, Fig. 4.1) for the static trunk.
-constexpr double kHipHeight = 0.530;
-constexpr double kSpineAboveHips = 0.100;
-constexpr double kShoulderHeight = 0.818;
-constexpr double kChinHeight = 0.870;
-
-struct Vec3 {
-  double x = 0.0;
-  double y = 0.0;
-  double z = 0.0;
-};
-
-// Which angle of a frame a joint's Xrotation comes from.
-enum class Drive { PelvisTilt, Hip, Knee, Ankle, Toe, UprightTrunk, Still };
-
-struct Joint {
-  std::string name;
-  Vec3 offset;  // metres, in the parent's frame
-  Drive drive = Drive::Still;
-  int leg = 0;
-  std::vector<Joint> children;
-  std::optional<Vec3> end_site;
-};
-
-Joint joint(std::string name, Vec3 offset, Drive drive, std::vector<Joint> children = {},
-            int leg = 0) {
-  return {std::move(name), offset, drive, leg, std::move(children), std::nullopt};
-}
-
-Joint leg_chain(const rig::Segments& s, rig::Side side, double half_width) {
-  const int leg = rig::index(side);
-  const std::string prefix = side == rig::Side::Left ? "Left" : "Right";
-  const double lateral = side == rig::Side::Left ? half_width : -half_width;  // left is +X
-  Joint toes = joint(prefix + "ToeBase", {0.0, -s.ankle_height, s.ball}, Drive::Toe, {}, leg);
-  toes.end_site = Vec3{0.0, 0.0, s.toe};
-  Joint foot = joint(prefix + "Foot", {0.0, -s.shank, 0.0}, Drive::Ankle, {toes}, leg);
-  Joint shank = joint(prefix + "Leg", {0.0, -s.thigh, 0.0}, Drive::Knee, {foot}, leg);
-  return joint(prefix + "UpLeg", {lateral, 0.0, 0.0}, Drive::Hip, {shank}, leg);
-}
-
-Joint skeleton(const rig::Segments& s, const BvhOptions& options) {
-  const double stature = s.leg_length() / kHipHeight;
-  const auto up = [stature](double share) { return Vec3{0.0, share * stature, 0.0}; };
-  Joint head = joint("Head", up(kChinHeight - kShoulderHeight), Drive::Still);
-  head.end_site = up(1.0 - kChinHeight);
-  Joint neck =
-      joint("Neck", up(kShoulderHeight - kHipHeight - kSpineAboveHips), Drive::Still, {head});
-  Joint spine = joint("Spine", up(kSpineAboveHips), Drive::UprightTrunk, {neck});
-  const double half_width = 0.5 * bvh_hip_width(s, options);
-  return joint("Hips", {}, Drive::PelvisTilt,
-               {leg_chain(s, rig::Side::Left, half_width),
-                leg_chain(s, rig::Side::Right, half_width), spine});
-}
-
-// Xrotation in radians: minus the joint's counter-clockwise angle in the (forward, up) plane,
-// the sense in which the rig's inclinations and pitches add up (rig::orientation).
-double x_rotation(const Joint& joint, const rig::Pose& pose) {
-  const rig::LegAngles& a = pose.legs[static_cast<std::size_t>(joint.leg)];
-  switch (joint.drive) {
-    case Drive::PelvisTilt:
-      return pose.pelvis_tilt;
-    case Drive::Hip:
-      return -a.hip;
-    case Drive::Knee:
-      return a.knee;
-    case Drive::Ankle:
-      return -a.ankle;
-    case Drive::Toe:
-      return -a.toe;
-    case Drive::UprightTrunk:
-      return -pose.pelvis_tilt;
-    case Drive::Still:
-      break;
-  }
-  return 0.0;
-}
+using detail::Joint;
+using detail::Vec3;
 
 // Fixed decimals, independent of the C locale, and never "-0.000000".
 void append(std::string& line, double value, int decimals = 6) {
@@ -132,7 +58,7 @@ void write_joint(std::ostream& out, const Joint& joint, int depth, double scale)
 void append_rotations(std::string& line, const Joint& joint, const rig::Pose& pose) {
   append(line, 0.0);  // Z
   append(line, 0.0);  // Y
-  append(line, rig::degrees(x_rotation(joint, pose)));
+  append(line, rig::degrees(detail::x_rotation(joint, pose)));
   for (const Joint& child : joint.children) {
     append_rotations(line, child, pose);
   }
@@ -177,7 +103,7 @@ void write_bvh(std::ostream& out, const eval::Motion& motion, const BvhOptions& 
   }
 
   const double scale = options.units_per_metre;
-  const Joint root = skeleton(motion.segments, options);
+  const Joint root = detail::skeleton(motion.segments, bvh_hip_width(motion.segments, options));
   out << "HIERARCHY\n";
   write_joint(out, root, 0, scale);
 

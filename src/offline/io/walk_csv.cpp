@@ -19,6 +19,8 @@ namespace {
 
 constexpr const char* kPointNames[] = {"hip", "knee", "ankle", "heel", "ball", "tip"};
 constexpr const char* kSidePrefix[] = {"l", "r"};
+// Optional, after the others: 1 on every row of captured motion (eval::Motion::captured).
+constexpr const char* kCapturedColumn = "captured";
 
 std::vector<std::string> header() {
   std::vector<std::string> h = {"time", "pelvis_x", "pelvis_y", "pelvis_tilt"};
@@ -73,6 +75,7 @@ void write_walk_csv(std::ostream& out, const eval::Motion& motion) {
   std::string line;
   for (const std::string& h : header())
     line += (line.empty() ? "" : ",") + h;
+  if (motion.captured) line += std::string(",") + kCapturedColumn;
   out << line << "\n";
   for (const eval::Frame& f : motion.frames) {
     line.clear();
@@ -92,6 +95,7 @@ void write_walk_csv(std::ostream& out, const eval::Motion& motion) {
         append(line, q->y, 6);
       }
     }
+    if (motion.captured) line += ",1";
     out << line << "\n";
   }
 }
@@ -102,6 +106,9 @@ eval::Motion read_walk_csv(std::istream& in, std::string_view source) {
   if (!std::getline(in, line)) throw fuzzy::ParseError(where, 1, "the file is empty");
   const std::vector<std::string> columns = detail::split_csv_line(line);
   const std::vector<std::size_t> wanted = detail::required_columns(columns, header(), where);
+  // Where the optional `captured` column is; columns.size() when there is none.
+  const auto captured_column = static_cast<std::size_t>(
+      std::find(columns.begin(), columns.end(), kCapturedColumn) - columns.begin());
   eval::Motion motion;
   std::vector<int> frame_lines;  // the line each frame was read from
   int number = 1;
@@ -144,6 +151,22 @@ eval::Motion read_walk_csv(std::istream& in, std::string_view source) {
         q->x = v[k++];
         q->y = v[k++];
       }
+    }
+    if (captured_column < columns.size()) {
+      const std::size_t c = captured_column;
+      const std::string cell = c < cells.size() ? cells[c] : std::string();
+      if (cell != "0" && cell != "1") {
+        throw fuzzy::ParseError(
+            where, number,
+            std::string("column '") + kCapturedColumn + "': '" + cell + "' is neither 0 nor 1");
+      }
+      if (!motion.frames.empty() && (cell == "1") != motion.captured) {
+        throw fuzzy::ParseError(where, number,
+                                std::string("column '") + kCapturedColumn + "': " + cell +
+                                    " differs from the rows before (the whole motion is "
+                                    "captured or not)");
+      }
+      motion.captured = cell == "1";
     }
     if (!motion.frames.empty() && !(f.time > motion.frames.back().time)) {
       throw fuzzy::ParseError(
@@ -218,32 +241,45 @@ terrain::Terrain read_terrain_csv(std::istream& in, std::string_view source) {
     throw fuzzy::ParseError(where, 1, "expected the header 'x,y'");
   }
   std::vector<rig::Point> points;
+  std::vector<int> point_lines;  // the line each point was read from
   int number = 1;
   while (std::getline(in, line)) {
     ++number;
     if (line.empty() || line == "\r") continue;
     const std::vector<std::string> cells = detail::split_csv_line(line);
     if (cells.size() != 2) throw fuzzy::ParseError(where, number, "expected two values 'x,y'");
-    const std::optional<double> x = fuzzy::parse_scalar(cells[0]);
-    const std::optional<double> y = fuzzy::parse_scalar(cells[1]);
-    if (!x || !y) throw fuzzy::ParseError(where, number, "x and y must be numbers");
-    if (!std::isfinite(*x) || !std::isfinite(*y)) {
-      throw fuzzy::ParseError(where, number, "x and y must be finite");
+    double xy[2] = {0.0, 0.0};
+    for (std::size_t c = 0; c < 2; ++c) {
+      const std::string column = std::string("column '") + (c == 0 ? "x" : "y") + "': ";
+      const std::optional<double> value = fuzzy::parse_scalar(cells[c]);
+      if (!value)
+        throw fuzzy::ParseError(where, number, column + "'" + cells[c] + "' is not a number");
+      if (!std::isfinite(*value)) {
+        throw fuzzy::ParseError(where, number, column + cells[c] + " is not a finite number");
+      }
+      if (std::abs(*value) > terrain::Terrain::kMaxCoordinate) {
+        throw fuzzy::ParseError(
+            where, number, column + cells[c] + " lies more than 1000 km from the origin (metres)");
+      }
+      xy[c] = *value;
     }
-    if (std::abs(*x) > terrain::Terrain::kMaxCoordinate ||
-        std::abs(*y) > terrain::Terrain::kMaxCoordinate) {
-      throw fuzzy::ParseError(where, number, "x and y must be within 1000 km of the origin");
+    if (!points.empty() && !(xy[0] > points.back().x)) {
+      throw fuzzy::ParseError(where, number,
+                              "column 'x': " + cells[0] +
+                                  " does not come after the x before it (x must increase along "
+                                  "the profile)");
     }
-    if (!points.empty() && !(*x > points.back().x)) {
-      throw fuzzy::ParseError(where, number, "x must increase along the profile");
-    }
-    points.push_back({*x, *y});
+    points.push_back({xy[0], xy[1]});
+    point_lines.push_back(number);
   }
-  try {
-    return terrain::Terrain::polyline(points);
-  } catch (const std::invalid_argument& e) {
-    throw fuzzy::ParseError(where, number, e.what());
+  if (points.size() < 2) {
+    throw fuzzy::ParseError(where, number, "the profile needs at least two points");
   }
+  // What is left (a wall taller than a leg climbs) is named by the line of its point.
+  if (const auto fault = terrain::Terrain::find_fault(points)) {
+    throw fuzzy::ParseError(where, point_lines[fault->point], fault->reason);
+  }
+  return terrain::Terrain::polyline(std::move(points));
 }
 
 }  // namespace fuzzygait::io

@@ -115,14 +115,14 @@ gait::ControllerSet SetParameters::rounded(const std::vector<double>& scaled,
   return with_values(values);
 }
 
-double word_penalty(const gait::ControllerSet& set) {
+double word_penalty(const gait::ControllerSet& set, const CostWeights& weights) {
   // Each word promises a direction and a size: "stay" is still, "flex" bends the joint, a
   // "fast" word is faster than its plain form, and so on. A tuned value that breaks its word's
   // promise would mislead the artist who reads the rules.
   double penalty = 0.0;
   for (const gait::Controller& c : set.controllers) {
     const fuzzy::OutputVariable& out = c.engine().outputs.at(0);
-    const double scale = 0.02 * (out.maximum - out.minimum);
+    const double scale = weights.word_unit * (out.maximum - out.minimum);
     auto value = [&out](const std::string& word, double& v) {
       const fuzzy::Term* t = out.find_term(word);
       if (!t || t->kind != fuzzy::TermKind::Constant) return false;
@@ -167,19 +167,32 @@ double word_penalty(const gait::ControllerSet& set) {
 
 namespace {
 
+// A walk whose typical frame-to-frame velocity change (deg/s) is under this counts it as this,
+// so that its velocity jump ratio stays finite.
+constexpr double kLeastVelocityChange = 1.0;
+
+// The samples of the mean cycle (eval::kCycleSamples, 2 % apart) where the toes rest near
+// neutral: while the foot is flat (10-30 %) and before landing (86-100 %).
+struct SampleRange {
+  int first;
+  int last;
+};
+constexpr SampleRange kToeRestSamples[] = {{5, 15}, {43, 50}};
+
 // Recovery from an awkward start (eval::walk_from_random_start, the acceptance test's check):
 // the walk must stay sound and settle into steps of the commanded length within three steps.
 // Returns 0 when it does.
-double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, std::string* report) {
+double recovery_cost(const gait::ControllerSet& set, std::uint64_t seed, const CostWeights& w,
+                     std::string* report) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   const gait::WalkerOptions wo;
   double cost = 0.0;
   try {
     const eval::RecoveryReport r = eval::walk_from_random_start(set, wo, seed, ground);
-    if (!r.sound()) cost = 100.0;
-    cost += 5.0 * r.unsettled_steps(wo.step_length);
+    if (!r.sound()) cost = w.unsound_start;
+    cost += w.unsettled_step * r.unsettled_steps(wo.step_length);
   } catch (const std::exception&) {
-    cost = 100.0;
+    cost = w.unsound_start;
   }
   if (report && cost > 0.0) {
     *report += "random start " + std::to_string(seed) + ": cost " + std::to_string(cost) + "\n";
@@ -221,6 +234,59 @@ std::vector<std::uint64_t> recovery_seeds(int count) {
   return seeds;
 }
 
+namespace {
+
+void validate_weights(const CostWeights& w) {
+  struct Field {
+    const char* name;
+    double value;
+    bool positive;  // divides: 0 is refused too
+  };
+  const Field fields[] = {
+      {"words", w.words, false},
+      {"words_over_bound", w.words_over_bound, false},
+      {"word_unit", w.word_unit, true},
+      {"unsound_start", w.unsound_start, false},
+      {"unsettled_step", w.unsettled_step, false},
+      // A walk that fails must cost something, and a candidate that makes no set more.
+      {"failed_walk", w.failed_walk, true},
+      {"step_error", w.step_error, false},
+      {"step_error_over_bound", w.step_error_over_bound, false},
+      {"toe_scuff", w.toe_scuff, false},
+      {"toe_clearance_wanted", w.toe_clearance_wanted, true},
+      {"cycle_time_sd", w.cycle_time_sd, false},
+      {"step_length_sd", w.step_length_sd, false},
+      {"stance_outside_range", w.stance_outside_range, false},
+      {"pelvis_outside_range", w.pelvis_outside_range, false},
+      {"cycle_time_outside_range", w.cycle_time_outside_range, false},
+      {"velocity_jump", w.velocity_jump, false},
+      {"velocity_jump_ratio_free", w.velocity_jump_ratio_free, false},
+      {"slip", w.slip, false},
+      {"slip_free", w.slip_free, false},
+      {"slip_over_bound", w.slip_over_bound, false},
+      {"penetration", w.penetration, false},
+      {"heel_bounce_over_bound", w.heel_bounce_over_bound, false},
+      {"curve_rmse", w.curve_rmse, false},
+      {"thigh_knee_uncorrelated", w.thigh_knee_uncorrelated, false},
+      {"ankle_uncorrelated", w.ankle_uncorrelated, false},
+      {"curve_rmse_over_bound", w.curve_rmse_over_bound, false},
+      {"acceleration_over_bound", w.acceleration_over_bound, false},
+      {"knee_peak_outside_range", w.knee_peak_outside_range, false},
+      {"knee_peak_timing_outside_range", w.knee_peak_timing_outside_range, false},
+      {"toe_off_neutral", w.toe_off_neutral, false},
+  };
+  static_assert(sizeof(fields) / sizeof(fields[0]) * sizeof(double) == sizeof(CostWeights),
+                "every field of CostWeights is checked");
+  for (const Field& f : fields) {
+    if (std::isfinite(f.value) && (f.positive ? f.value > 0.0 : f.value >= 0.0)) continue;
+    throw std::invalid_argument("tune: weights." + std::string(f.name) + " must be finite and " +
+                                (f.positive ? "above 0" : "at least 0") + ", got " +
+                                common::number_text(f.value));
+  }
+}
+
+}  // namespace
+
 void validate(const TuneOptions& o) {
   auto within = [](const char* field, double value, double low, double high) {
     if (!(value >= low && value <= high)) {
@@ -238,6 +304,7 @@ void validate(const TuneOptions& o) {
   ordered("cycle time range", o.cycle_time_min, o.cycle_time_max, 0.1, 10.0);
   ordered("stance range", o.stance_min, o.stance_max, 0.0, 100.0);
   ordered("knee peak range", o.knee_peak_min, o.knee_peak_max, 0.0, 180.0);
+  ordered("knee peak timing range", o.knee_peak_percent_min, o.knee_peak_percent_max, 0.0, 100.0);
   ordered("pelvis range", o.pelvis_range_min, o.pelvis_range_max, 0.0, 1e9);
   within("minimum inertia", o.minimum_inertia, 0.001, 1.0);
   within("thigh RMSE bound", o.thigh_rmse_max, 0.0, 180.0);
@@ -249,6 +316,7 @@ void validate(const TuneOptions& o) {
   within("acceleration ratio bound", o.acceleration_ratio_max, 1e-9,
          std::numeric_limits<double>::infinity());
   within("heel bounce bound", o.heel_bounce_max, 0.0, std::numeric_limits<double>::infinity());
+  validate_weights(o.weights);
   within("generations", o.generations, 1, 1e6);
   within("polish generations", o.polish_generations, 0, 1e6);
   within("digits", o.digits, 1, 17);
@@ -260,15 +328,17 @@ void validate(const TuneOptions& o) {
 double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std::string* report,
                  int* failed_walks) {
   validate(options);
+  const CostWeights& w = options.weights;
   if (failed_walks) *failed_walks = 0;
   const terrain::Terrain ground = terrain::Terrain::flat();
-  const double words = word_penalty(set);
-  double total = 10.0 * words + 100.0 * std::max(0.0, words - options.word_penalty_max);
+  const double words = word_penalty(set, w);
+  double total =
+      w.words * words + w.words_over_bound * std::max(0.0, words - options.word_penalty_max);
   if (report && words > 0.0) {
     *report += "words against their meaning: penalty " + std::to_string(words) + "\n";
   }
   for (std::uint64_t seed : options.recovery_seeds)
-    total += recovery_cost(set, seed, report);
+    total += recovery_cost(set, seed, w, report);
   for (const WalkCondition& c : options.conditions) {
     double cost = 0.0;
     try {
@@ -282,42 +352,56 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
         return std::max(0.0, low - value) + std::max(0.0, value - high);
       };
       const double step_error = r.step_error_percent.value();  // the step is always given
-      cost += 2.0 * step_error + 20.0 * std::max(0.0, step_error - options.step_error_max);
-      cost += 200.0 * std::max(0.0, 0.012 - r.min_toe_clearance) / 0.012;
-      cost += 100.0 * r.cycle_time_sd + 100.0 * r.step_length_sd / c.step_length;
-      cost += 2.0 * over(r.stance_percent, options.stance_min, options.stance_max);
-      cost += 0.5 * over(1000.0 * r.pelvis_vertical_range, options.pelvis_range_min,
-                         options.pelvis_range_max);
-      cost += 50.0 * over(r.cycle_time, options.cycle_time_min, options.cycle_time_max);
+      cost += w.step_error * step_error +
+              w.step_error_over_bound * std::max(0.0, step_error - options.step_error_max);
+      cost += w.toe_scuff * std::max(0.0, w.toe_clearance_wanted - r.min_toe_clearance) /
+              w.toe_clearance_wanted;
+      cost +=
+          w.cycle_time_sd * r.cycle_time_sd + w.step_length_sd * r.step_length_sd / c.step_length;
+      cost +=
+          w.stance_outside_range * over(r.stance_percent, options.stance_min, options.stance_max);
+      cost += w.pelvis_outside_range * over(1000.0 * r.pelvis_vertical_range,
+                                            options.pelvis_range_min, options.pelvis_range_max);
+      cost += w.cycle_time_outside_range *
+              over(r.cycle_time, options.cycle_time_min, options.cycle_time_max);
       // Velocities must not jump where a phase hands a joint to another controller.
-      cost += 10.0 *
-              std::max(0.0, r.max_velocity_jump / std::max(r.typical_velocity_change, 1.0) - 1.2);
+      const double jump_ratio =
+          r.max_velocity_jump / std::max(r.typical_velocity_change, kLeastVelocityChange);
+      cost += w.velocity_jump * std::max(0.0, jump_ratio - w.velocity_jump_ratio_free);
       // A foot point near the ground that moves along it is a slip (the walk checker's rule).
-      cost += 2000.0 * std::max(0.0, r.max_slip - 0.0005) +
-              20000.0 * std::max(0.0, r.max_slip - options.slip_max) + 1000.0 * r.max_penetration;
-      cost += 20000.0 * std::max(0.0, r.max_heel_bounce - options.heel_bounce_max);
+      cost += w.slip * std::max(0.0, r.max_slip - w.slip_free) +
+              w.slip_over_bound * std::max(0.0, r.max_slip - options.slip_max) +
+              w.penetration * r.max_penetration;
+      cost += w.heel_bounce_over_bound * std::max(0.0, r.max_heel_bounce - options.heel_bounce_max);
       if (c.reference) {
-        double realism = 2.0 * (r.thigh_score->rmse + r.knee_score->rmse + r.ankle_score->rmse);
-        realism += 10.0 * (2.0 - r.thigh_score->pearson - r.knee_score->pearson) +
-                   20.0 * (1.0 - r.ankle_score->pearson);
+        double realism =
+            w.curve_rmse * (r.thigh_score->rmse + r.knee_score->rmse + r.ankle_score->rmse);
+        // (1 - r) + (1 - r) of the thigh and the knee.
+        realism +=
+            w.thigh_knee_uncorrelated * (2.0 - r.thigh_score->pearson - r.knee_score->pearson) +
+            w.ankle_uncorrelated * (1.0 - r.ankle_score->pearson);
         if (c.enforce_bounds) {
-          realism += 10.0 * (std::max(0.0, r.thigh_score->rmse - options.thigh_rmse_max) +
-                             std::max(0.0, r.knee_score->rmse - options.knee_rmse_max) +
-                             std::max(0.0, r.ankle_score->rmse - options.ankle_rmse_max));
+          realism += w.curve_rmse_over_bound *
+                     (std::max(0.0, r.thigh_score->rmse - options.thigh_rmse_max) +
+                      std::max(0.0, r.knee_score->rmse - options.knee_rmse_max) +
+                      std::max(0.0, r.ankle_score->rmse - options.ankle_rmse_max));
           for (const eval::JointScore* s : {&*r.thigh_score, &*r.knee_score}) {
-            realism +=
-                10.0 * std::max(0.0, s->acceleration_ratio() - options.acceleration_ratio_max);
+            realism += w.acceleration_over_bound *
+                       std::max(0.0, s->acceleration_ratio() - options.acceleration_ratio_max);
           }
         }
-        realism += over(r.knee_peak, options.knee_peak_min, options.knee_peak_max) +
-                   over(r.knee_peak_percent, 69.0, 77.0);
+        realism += w.knee_peak_outside_range *
+                       over(r.knee_peak, options.knee_peak_min, options.knee_peak_max) +
+                   w.knee_peak_timing_outside_range * over(r.knee_peak_percent,
+                                                           options.knee_peak_percent_min,
+                                                           options.knee_peak_percent_max);
         // The toes rest near neutral while the foot is flat and again before landing.
         double toe = 0.0;
-        for (int k = 5; k <= 15; ++k)
-          toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
-        for (int k = 43; k <= 50; ++k)
-          toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
-        realism += 0.1 * toe;
+        for (const SampleRange& rest : kToeRestSamples) {
+          for (int k = rest.first; k <= rest.last; ++k)
+            toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
+        }
+        realism += w.toe_off_neutral * toe;
         cost += c.realism_weight * realism;
       }
       if (report) {
@@ -342,13 +426,13 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
         *report += "\n";
       }
     } catch (const std::exception& e) {
-      cost = 1000.0;
+      cost = w.failed_walk;
       if (failed_walks) ++*failed_walks;
       if (report)
         *report += "stature/step " + std::to_string(c.stature) + "/" +
                    std::to_string(c.step_length) + ": failed: " + e.what() + "\n";
     }
-    total += std::isfinite(cost) ? cost : 1000.0;
+    total += std::isfinite(cost) ? cost : w.failed_walk;
   }
   return total;
 }
@@ -364,7 +448,7 @@ double candidate_cost(const std::function<gait::ControllerSet()>& make,
   try {
     set = make();
   } catch (const std::invalid_argument&) {
-    return 1000.0 *
+    return options.weights.failed_walk *
            static_cast<double>(options.conditions.size() + options.recovery_seeds.size() + 1);
   }
   return walk_cost(set, options);

@@ -6,14 +6,6 @@
 #include <system_error>
 
 namespace fuzzygait::common::json {
-
-Value::Value() = default;
-Value::~Value() = default;
-Value::Value(const Value&) = default;
-Value::Value(Value&&) noexcept = default;
-Value& Value::operator=(const Value&) = default;
-Value& Value::operator=(Value&&) noexcept = default;
-
 namespace {
 
 constexpr int kMaxDepth = 64;
@@ -284,6 +276,8 @@ class Reader {
 };
 
 }  // namespace
+
+Value::Value() = default;
 
 const Value* Value::find(std::string_view key) const {
   for (const auto& [name, value] : object) {

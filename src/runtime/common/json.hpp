@@ -12,14 +12,9 @@
 namespace fuzzygait::common::json {
 
 struct Value {
-  // Defined in json.cpp, where Value is complete: Clang (with libstdc++ in C++20) cannot
-  // instantiate the members' destructors for the pair of an incomplete Value here.
+  // Defined in json.cpp: defined here, clang (14, with libstdc++ 12) instantiates the members'
+  // destructors while std::pair<std::string, Value> below is still incomplete, and fails.
   Value();
-  ~Value();
-  Value(const Value&);
-  Value(Value&&) noexcept;
-  Value& operator=(const Value&);
-  Value& operator=(Value&&) noexcept;
 
   enum class Kind { Null, Boolean, Number, String, Array, Object };
   Kind kind = Kind::Null;

@@ -1,5 +1,6 @@
 #include "fuzzygait/gait/controllers.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <set>
@@ -18,7 +19,7 @@ constexpr std::array<std::string_view, kSlotCount> kSlotNames = {
     "swing_hip",  "swing_knee",  "swing_ankle",  "swing_toe",
     "stance_hip", "stance_knee", "stance_ankle", "stance_toe"};
 constexpr std::array<std::string_view, kMetricCount> kMetricNames = {
-    "delta", "other_delta", "hip", "knee", "ankle", "toe", "sole"};
+    "delta", "other_delta", "hip", "knee", "ankle", "toe", "sole", "incline", "stairs"};
 
 using fuzzygait::common::number_text;
 using fuzzygait::common::json::Value;
@@ -49,7 +50,226 @@ std::string text(const Value& manifest, const char* key, const std::string& sour
   return v->string;
 }
 
+std::size_t slot_index(std::string_view name) {
+  for (std::size_t s = 0; s < kSlotNames.size(); ++s) {
+    if (kSlotNames[s] == name) return s;
+  }
+  return kSlotNames.size();
+}
+
+// One kind of ground of the manifest's "terrain": {"incline_deg": {WORD: PEAK, ...}, "ascent":
+// [WORD...], "landing_knee_deg": {WORD: DEG}, "controllers": {SLOT: {WORD: FILE}}}.
+void read_ground(const Value& ground, const std::string& name,
+                 const std::map<std::string, std::string>& files, const std::string& source,
+                 const std::string& manifest_source, ControllerSet::GroundWords& g,
+                 std::vector<Controller>& controllers) {
+  const std::string at = "'terrain." + name;
+  if (ground.kind != Value::Kind::Object) {
+    throw std::invalid_argument(where(manifest_source, ground) + at + "' must be an object");
+  }
+  const Value* words = ground.find("incline_deg");
+  if (!words || words->kind != Value::Kind::Object || words->object.size() < 2) {
+    throw std::invalid_argument(where(manifest_source, words ? *words : ground) + at +
+                                "' needs 'incline_deg': two or more words and the incline "
+                                "(degrees) where each holds fully");
+  }
+  std::vector<std::pair<double, std::string>> peaks;
+  for (const auto& [word, peak] : words->object) {
+    if (peak.kind != Value::Kind::Number || !(std::abs(peak.number) <= 90.0)) {
+      throw std::invalid_argument(where(manifest_source, peak) + "incline word '" + word +
+                                  "' must peak at a number of degrees between -90 and 90");
+    }
+    peaks.emplace_back(peak.number, word);
+  }
+  std::sort(peaks.begin(), peaks.end());
+  for (std::size_t i = 1; i < peaks.size(); ++i) {
+    if (peaks[i].first == peaks[i - 1].first) {
+      throw std::invalid_argument(where(manifest_source, *words) + "incline words '" +
+                                  peaks[i - 1].second + "' and '" + peaks[i].second +
+                                  "' peak at the same incline");
+    }
+  }
+  for (const auto& [peak, word] : peaks) {
+    g.words.push_back(word);
+    g.peaks.push_back(peak);
+  }
+  for (std::vector<int>& of : g.of_slot)
+    of.assign(g.words.size(), -1);
+  auto word_index = [&](const Value& v, const std::string& word, const char* what) {
+    const auto w = std::find(g.words.begin(), g.words.end(), word);
+    if (w == g.words.end()) {
+      throw std::invalid_argument(where(manifest_source, v) + at + "." + what + "' names '" + word +
+                                  "', not a word of its 'incline_deg'");
+    }
+    return static_cast<std::size_t>(w - g.words.begin());
+  };
+  g.ascent.assign(g.words.size(), false);
+  if (const Value* ascent = ground.find("ascent")) {
+    if (ascent->kind != Value::Kind::Array) {
+      throw std::invalid_argument(where(manifest_source, *ascent) + at +
+                                  ".ascent' must list incline words");
+    }
+    for (const Value& word : ascent->array) {
+      if (word.kind != Value::Kind::String) {
+        throw std::invalid_argument(where(manifest_source, word) + at +
+                                    ".ascent' must list incline words (strings)");
+      }
+      g.ascent[word_index(word, word.string, "ascent")] = true;
+    }
+  }
+  g.landing_knee.assign(g.words.size(), 0.0);
+  if (const Value* knees = ground.find("landing_knee_deg")) {
+    if (knees->kind != Value::Kind::Object) {
+      throw std::invalid_argument(where(manifest_source, *knees) + at +
+                                  ".landing_knee_deg' must map incline words to degrees");
+    }
+    for (const auto& [word, knee] : knees->object) {
+      const std::size_t w = word_index(knee, word, "landing_knee_deg");
+      if (knee.kind != Value::Kind::Number || !(knee.number >= 0.0 && knee.number <= 90.0)) {
+        throw std::invalid_argument(where(manifest_source, knee) + "the landing knee of '" + word +
+                                    "' must be between 0 and 90 degrees");
+      }
+      g.landing_knee[w] = rig::radians(knee.number);
+    }
+  }
+  const Value* slots = ground.find("controllers");
+  if (!slots) return;
+  if (slots->kind != Value::Kind::Object) {
+    throw std::invalid_argument(where(manifest_source, *slots) + at +
+                                ".controllers' must map slots to their words' FLL files");
+  }
+  for (const auto& [slot, by_word] : slots->object) {
+    const std::size_t s = slot_index(slot);
+    if (s == kSlotNames.size()) {
+      throw std::invalid_argument(where(manifest_source, by_word) + "unknown controller slot '" +
+                                  slot + "'");
+    }
+    if (by_word.kind != Value::Kind::Object) {
+      throw std::invalid_argument(where(manifest_source, by_word) + "terrain controllers of '" +
+                                  slot + "' must map incline words to FLL files");
+    }
+    for (const auto& [word, file] : by_word.object) {
+      const std::size_t w = word_index(file, word, "controllers");
+      if (file.kind != Value::Kind::String) {
+        throw std::invalid_argument(where(manifest_source, file) + "terrain controller '" + slot +
+                                    "' for '" + word + "' must name an FLL file (a string)");
+      }
+      const auto text = files.find(file.string);
+      if (text == files.end()) {
+        throw std::invalid_argument(where(manifest_source, file) + "terrain controller '" + slot +
+                                    "' for '" + word + "' names '" + file.string +
+                                    "', which is not in the set");
+      }
+      const std::string path = source + "/" + file.string;
+      g.of_slot[s][w] = static_cast<int>(controllers.size());
+      controllers.emplace_back(
+          fuzzy::read_fll(text->second, path, fuzzy::FllOptions{.finite_numbers = true}), path);
+    }
+  }
+}
+
+void read_terrain(const Value& terrain, const std::map<std::string, std::string>& files,
+                  const std::string& source, const std::string& manifest_source,
+                  ControllerSet& set) {
+  if (terrain.kind != Value::Kind::Object) {
+    throw std::invalid_argument(where(manifest_source, terrain) + "'terrain' must be an object");
+  }
+  for (const auto& [name, ground] : terrain.object) {
+    const Ground kind =
+        name == "slopes" ? Ground::Slopes
+        : name == "stairs"
+            ? Ground::Stairs
+            : throw std::invalid_argument(where(manifest_source, ground) +
+                                          "'terrain' has words for 'slopes' (level ground "
+                                          "and ramps) and 'stairs', not '" +
+                                          name + "'");
+    read_ground(ground, name, files, source, manifest_source,
+                set.ground[static_cast<std::size_t>(kind)], set.terrain_controllers);
+  }
+}
+
+// The words of the ground the metrics say and their degrees at its incline, the blend of a
+// one-input partition controller over the incline (fuzzy::evaluate_partition's order and
+// tolerance): `fire(word, degree)` for each word that fires. False (nothing fired) without words.
+template <class Fire>
+bool fire_words(const ControllerSet& set, const MetricValues& metrics, Fire fire) {
+  const double stairs = metrics[static_cast<std::size_t>(Metric::Stairs)];
+  const double incline = metrics[static_cast<std::size_t>(Metric::Incline)];
+  const ControllerSet::GroundWords& g =
+      set.ground[static_cast<std::size_t>(stairs > 0.5 ? Ground::Stairs : Ground::Slopes)];
+  if (g.empty() || std::isnan(incline)) return false;
+  const fuzzy::PartitionDegrees<double> d =
+      fuzzy::partition_degrees(g.peaks.data(), g.peaks.size(), incline);
+  if (d.lower_degree >= fuzzy::kTolerance) fire(g, d.lower, d.lower_degree);
+  if (d.lower + 1 < g.peaks.size() && d.upper_degree >= fuzzy::kTolerance) {
+    fire(g, d.lower + 1, d.upper_degree);
+  }
+  return true;
+}
+
 }  // namespace
+
+const Controller& ControllerSet::controller(int slot, Ground kind, std::size_t word) const {
+  const auto s = static_cast<std::size_t>(slot);
+  const GroundWords& g = ground[static_cast<std::size_t>(kind)];
+  const int v = g.empty() ? -1 : g.of_slot[s][word];
+  return v < 0 ? controllers[s] : terrain_controllers[static_cast<std::size_t>(v)];
+}
+
+double ControllerSet::evaluate(int slot, const MetricValues& metrics,
+                               std::vector<fuzzy::Workspace>& workspaces) const {
+  const auto s = static_cast<std::size_t>(slot);
+  double sum = 0.0;
+  double weights = 0.0;
+  const bool words =
+      fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double degree) {
+        const int v = g.of_slot[s][word];
+        const double command =
+            v < 0 ? controllers[s].evaluate(metrics, workspaces[s])
+                  : terrain_controllers[static_cast<std::size_t>(v)].evaluate(
+                        metrics, workspaces[controllers.size() + static_cast<std::size_t>(v)]);
+        sum += degree * command;
+        weights += degree;
+      });
+  if (!words || !(weights > 0.0)) return controllers[s].evaluate(metrics, workspaces[s]);
+  return sum / weights;
+}
+
+bool ControllerSet::own_controllers_at(LegPhase phase, const MetricValues& metrics) const {
+  bool own = true;
+  fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double) {
+    for (int j = 0; j < 4; ++j) {
+      own =
+          own && g.of_slot[static_cast<std::size_t>(slot(phase, static_cast<Joint>(j)))][word] < 0;
+    }
+  });
+  return own;
+}
+
+double ControllerSet::own_degree(int slot, const MetricValues& metrics) const {
+  double own = 0.0;
+  const bool words =
+      fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double degree) {
+        if (g.of_slot[static_cast<std::size_t>(slot)][word] < 0) own += degree;
+      });
+  return words ? own : 1.0;
+}
+
+double ControllerSet::ascent_weight(const MetricValues& metrics) const {
+  double weight = 0.0;
+  fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double degree) {
+    if (g.ascent[word]) weight += degree;
+  });
+  return weight;
+}
+
+double ControllerSet::landing_knee(const MetricValues& metrics) const {
+  double knee = 0.0;
+  fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double degree) {
+    knee += degree * g.landing_knee[word];
+  });
+  return knee;
+}
 
 std::string_view slot_name(int slot) {
   return kSlotNames.at(static_cast<std::size_t>(slot));
@@ -175,6 +395,9 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
     const std::string path = source + "/" + file->string;
     set.controllers.emplace_back(
         fuzzy::read_fll(text->second, path, fuzzy::FllOptions{.finite_numbers = true}), path);
+  }
+  if (const Value* terrain = manifest.find("terrain")) {
+    read_terrain(*terrain, files, source, manifest_source, set);
   }
   return set;
 }

@@ -26,7 +26,8 @@ Crowd& Crowd::operator=(Crowd&&) noexcept = default;
 
 Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
              std::span<const WalkerOptions> characters,
-             std::span<const detail::ControllerBackend* const> backends) {
+             std::span<const detail::ControllerBackend* const> backends)
+    : controllers_(&controllers) {
   walkers_.reserve(characters.size());
   for (std::size_t i = 0; i < characters.size(); ++i) {
     if (i > 0 && !(characters[i].time_step == characters[0].time_step)) {
@@ -134,13 +135,16 @@ void Crowd::command(std::size_t first, std::size_t count) {
                                   metrics + input_of_slot_[s][1] * kLanesPerSlot, &output_[lane],
                                   lanes_in[phase]);
   }
-  // Each leg's four outputs, a slot's lanes apart, to its commands.
+  // Each leg's four outputs, a slot's lanes apart, to its commands; a leg on terrain whose words
+  // the set has controllers for blends them, as a Walker does.
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t leg = 0; leg < 2; ++leg) {
       const double* out = &output_[output_of_[2 * i + leg]];
       for (std::size_t joint = 0; joint < 4; ++joint)
         steps_[i].commands[leg][joint] = out[joint * kLanesPerSlot];
     }
+    if (controllers_->has_terrain_words())
+      WalkerStages::command_on_terrain(walkers_[first + i], steps_[i]);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -55,6 +56,11 @@ constexpr double kReflexSpeed = 10.0;
 // set's: ControllerSet::shortest_step.)
 constexpr double kLongestStep = 1.2;
 constexpr double kShortestTimeStep = 1e-5;
+// How far a foot's heel and toes keep from a tread's edges (m).
+constexpr double kFootholdMargin = 0.005;
+// A swinging leg aims to land with its knee bent where its target lies more than this (m) within
+// the straight leg's reach, fully at twice this: level steps end a few millimetres within it.
+constexpr double kStraightLanding = 0.02;
 constexpr double kLongestTimeStep = 0.05;
 
 double thigh_of(double tilt, const LegAngles& a) {
@@ -101,21 +107,38 @@ double bisect(double good, double bad, Ok ok) {
   return good;
 }
 
-// The ground's height under a foot's heel, ball and toe tip.
+// How far the ground's corners (a stair's nosing, the top of a kerb) rise through the segment from
+// a to b: the largest height of a corner above the segment, -infinity when none lies under it.
+double corner_depth(const terrain::Terrain& terrain, Point a, Point b) {
+  if (b.x < a.x) std::swap(a, b);
+  double depth = -std::numeric_limits<double>::infinity();
+  for (const Point& c : terrain.corners_between(a.x, b.x)) {
+    const double y = a.y + (b.y - a.y) * (c.x - a.x) / (b.x - a.x);
+    depth = std::max(depth, c.y - y);
+  }
+  return depth;
+}
+
+// The ground's height under a foot's heel, ball and toe tip, and the corners under its sole and
+// toes.
 struct FootGround {
   double heel;
   double ball;
   double tip;
+  double sole_corners;  // corner_depth of heel-ball
+  double toe_corners;   // and of ball-tip
 };
 FootGround ground_under(const terrain::Terrain& terrain, const LegPoints& p) {
-  return {terrain.height(p.heel.x), terrain.height(p.ball.x), terrain.height(p.tip.x)};
+  return {terrain.height(p.heel.x), terrain.height(p.ball.x), terrain.height(p.tip.x),
+          corner_depth(terrain, p.heel, p.ball), corner_depth(terrain, p.ball, p.tip)};
 }
 
-// How deep the heel, ball or (with_tip) toe tip is below the ground (negative when all are
-// above).
+// How deep the foot is in the ground: its heel, ball or (with_tip) toe tip below the ground, or a
+// corner of the ground through its sole or toes (negative when all is above).
 double foot_depth(const LegPoints& p, const FootGround& ground, bool with_tip = true) {
-  const double sole = std::max(ground.heel - p.heel.y, ground.ball - p.ball.y);
-  return with_tip ? std::max(sole, ground.tip - p.tip.y) : sole;
+  const double sole =
+      std::max({ground.heel - p.heel.y, ground.ball - p.ball.y, ground.sole_corners});
+  return with_tip ? std::max({sole, ground.tip - p.tip.y, ground.toe_corners}) : sole;
 }
 
 Point contact_point(const LegPoints& p, Phase phase) {
@@ -212,14 +235,16 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
         number_text(kLongestStep) + " leg lengths, the reach of these legs), got " +
         number_text(options.step_length) + " m");
   }
-  workspaces_.reserve(static_cast<std::size_t>(kSlotCount));
-  for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
-    workspaces_.push_back(controllers.controllers[s].make_workspace());
-  }
+  workspaces_.reserve(controllers.controller_count());
+  for (const Controller& c : controllers.controllers)
+    workspaces_.push_back(c.make_workspace());
+  for (const Controller& c : controllers.terrain_controllers)
+    workspaces_.push_back(c.make_workspace());
   events_.reserve(kEventCapacity);
   // Angle between the thigh and the hip-heel line of a straight leg with a neutral ankle.
   const LegPoints straight = rig::forward_kinematics(segments_, {0.0, 0.0}, 0.0, LegAngles{});
   heel_offset_ = -inclination(straight.hip, straight.heel);
+  reach_ = std::hypot(straight.heel.x - straight.hip.x, straight.heel.y - straight.hip.y);
   start(options.start);
 }
 
@@ -419,6 +444,7 @@ void Walker::warm_up(double seconds) {
     l.anchor.x -= shift;
     l.target_x -= shift;
     l.strike_x -= shift;
+    l.step_from_x -= shift;
     l.swing_start -= state_.time;
   }
   state_.time = 0.0;
@@ -459,9 +485,17 @@ void Walker::lift_off(int leg) {
   l.swing_start = state_.time;
   l.sweep_start = thigh_of(state_.pelvis_tilt, l.angles);
   const int lead = state_.lead;
-  const double from =
-      (lead >= 0 && lead != leg) ? state_.legs[static_cast<std::size_t>(lead)].strike_x : p.heel.x;
-  l.target_x = from + step_length_;
+  const bool planted = lead >= 0 && lead != leg;
+  const LegState* other = planted ? &state_.legs[static_cast<std::size_t>(lead)] : nullptr;
+  const double from = other ? other->strike_x : p.heel.x;
+  // A step of the commanded length along the ground, moved to where the whole foot stands on one
+  // tread, at most a stair up or down from the tread the other foot stands on.
+  const terrain::Terrain::Foothold target = terrain_->foothold(
+      other ? other->anchor.x : from, terrain_->ahead_along_ground(from, step_length_),
+      segments_.foot_length(), kFootholdMargin, min_step_length());
+  l.step_from_x = l.strike_x;
+  l.target_x = target.heel_x;
+  l.target_run = target.run;
 }
 
 void Walker::place_pelvis(int leg) {
@@ -566,8 +600,12 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
       }
       break;
     }
-    case Phase::Ball:
-      if (foot_of(tilt, l.angles) >= slope) {
+    case Phase::Ball: {
+      const rig::detail::SinCos along = sin_cos(slope);
+      const double heel_x = l.anchor.x - sole_length * along.cos;
+      // The heel comes back down where there is ground under it (not over a stair's edge).
+      if (foot_of(tilt, l.angles) >= slope &&
+          terrain_->run_at(heel_x) == terrain_->run_at(l.anchor.x)) {
         // The heel came back down.
         l.phase = Phase::Flat;
         l.angles.ankle = slope - shank_of(tilt, l.angles);
@@ -577,6 +615,7 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
       }
       l.angles.toe = slope - foot_of(tilt, l.angles);
       break;
+    }
     case Phase::Swing:
       break;
   }
@@ -651,15 +690,30 @@ void Walker::clear_ground(int leg, double max_change, double margin, bool with_t
 }
 
 FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, const LegPoints& p,
+                                                          double ascent, double landing_knee,
                                                           MetricValues& m) {
   LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
   const double tilt = w.state_.pelvis_tilt;
   const double thigh = thigh_of(tilt, l.angles);
   double end = l.sweep_end;
   if (l.phase == Phase::Swing) {
-    // Arrived when the thigh is where a straight leg's heel would point at the foot target.
+    // Arrived when the thigh is where a straight leg's heel would point at the foot target; under
+    // the set's ascent words (up a stair), where the target lies well within the leg's reach, where
+    // the leg with its knee bent puts the heel on it: the paper's end position of the knee.
     const Point target{l.target_x, w.terrain_->height(l.target_x)};
     end = inclination(p.hip, target) + w.heel_offset_;
+    if (landing_knee > 0.0) {
+      // The thigh's angle to the hip-heel line of a leg landing with its knee bent so.
+      const LegPoints bent =
+          rig::forward_kinematics(w.segments_, {0.0, 0.0}, 0.0, LegAngles{0.0, landing_knee});
+      end = inclination(p.hip, target) - inclination(bent.hip, bent.heel);
+    }
+    if (ascent > 0.0) {
+      const double within = w.reach_ - std::hypot(target.x - p.hip.x, target.y - p.hip.y);
+      const double bent = knee_end_thigh(w, leg, p.hip, target);
+      const double weight = ascent * std::clamp(within / kStraightLanding - 1.0, 0.0, 1.0);
+      if (weight > 0.0 && !std::isnan(bent)) end += weight * (bent - end);
+    }
     l.sweep_end = end;
   }
   l.delta = progress(thigh, l.sweep_start, end);
@@ -676,6 +730,7 @@ FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, co
 // (rather than between the two legs' integrations) they took 3 % less of a step.
 void WalkerStages::command(Walker& w, StepData& d) {
   const ControllerBackend* backend = w.backend_;
+  const ControllerSet& set = *w.controllers_;
   FUZZYGAIT_UNROLL(2)
   for (std::size_t leg = 0; leg < 2; ++leg) {
     const LegPhase phase =
@@ -684,9 +739,23 @@ void WalkerStages::command(Walker& w, StepData& d) {
     FUZZYGAIT_UNROLL(4)
     for (std::size_t joint = 0; joint < 4; ++joint) {
       const auto s = static_cast<std::size_t>(slot(phase, static_cast<Joint>(joint)));
-      d.commands[leg][joint] = backend
-                                   ? backend->evaluate(static_cast<int>(s), m)
-                                   : w.controllers_->controllers[s].evaluate(m, w.workspaces_[s]);
+      d.commands[leg][joint] = backend ? backend->evaluate(static_cast<int>(s), m)
+                                       : set.controllers[s].evaluate(m, w.workspaces_[s]);
+    }
+  }
+  if (!backend && set.has_terrain_words()) command_on_terrain(w, d);
+}
+
+void WalkerStages::command_on_terrain(Walker& w, StepData& d) {
+  const ControllerSet& set = *w.controllers_;
+  for (std::size_t leg = 0; leg < 2; ++leg) {
+    const LegPhase phase =
+        w.state_.legs[leg].phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
+    const MetricValues& m = d.metrics[leg];
+    if (set.own_controllers_at(phase, m)) continue;
+    for (std::size_t joint = 0; joint < 4; ++joint) {
+      d.commands[leg][joint] =
+          set.evaluate(slot(phase, static_cast<Joint>(joint)), m, w.workspaces_);
     }
   }
 }
@@ -735,14 +804,61 @@ void WalkerStages::measure(Walker& w, StepData& d) {
     }
   }
   std::array<MetricValues, 2>& metrics = d.metrics;
+  const std::array<LegGround, 2> ground = leg_ground(w);
+  const ControllerSet& set = *w.controllers_;
   for (int leg = 0; leg < 2; ++leg) {
-    update_metrics(w, leg, w.end_points_[static_cast<std::size_t>(leg)],
-                   metrics[static_cast<std::size_t>(leg)]);
+    const auto k = static_cast<std::size_t>(leg);
+    metrics[k][static_cast<std::size_t>(Metric::Incline)] = ground[k].incline;
+    metrics[k][static_cast<std::size_t>(Metric::Stairs)] = ground[k].stairs;
+    update_metrics(w, leg, w.end_points_[k], set.ascent_weight(metrics[k]),
+                   set.landing_knee(metrics[k]), metrics[k]);
   }
   const auto other_delta = static_cast<std::size_t>(Metric::OtherDelta);
   const auto delta = static_cast<std::size_t>(Metric::Delta);
   metrics[0][other_delta] = metrics[1][delta];
   metrics[1][other_delta] = metrics[0][delta];
+}
+
+// Each leg's incline (degrees, uphill +) from the ground's pitch (Terrain::pitch) at the feet's
+// footholds, and whether it is a stair's. A swinging leg: the steeper of where it left and where
+// it lands (it lifts the foot over the edges between). A planted leg: going up, its own
+// foothold's (it lifts the body onto it); going down, the lower of its own and the other foot's
+// next (it lowers the body to it).
+std::array<WalkerStages::LegGround, 2> WalkerStages::leg_ground(const Walker& w) {
+  std::array<LegGround, 2> result{};
+  const terrain::Terrain& ground = *w.terrain_;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const LegState& l = w.state_.legs[k];
+    const LegState& other = w.state_.legs[1 - k];
+    const bool swinging = l.phase == Phase::Swing;
+    const double a_x = swinging ? l.step_from_x : l.anchor.x;
+    const double b_x =
+        swinging ? l.target_x : (other.phase == Phase::Swing ? other.target_x : other.anchor.x);
+    const double a = ground.pitch(a_x);
+    const double b = ground.pitch(b_x);
+    const double pitch =
+        swinging ? (std::abs(a) > std::abs(b) ? a : b) : std::max(a, 0.0) + std::min({a, b, 0.0});
+    result[k] = {rig::degrees(pitch), ground.on_tread(a_x) || ground.on_tread(b_x) ? 1.0 : 0.0};
+  }
+  return result;
+}
+
+// The paper's end position of the knee: the thigh's inclination when hip and knee put the heel on
+// `target` with the knee bent forward (two-link IK, the ankle as it is); NaN out of reach.
+double WalkerStages::knee_end_thigh(const Walker& w, int leg, Point hip, Point target) {
+  const rig::Segments& s = w.segments_;
+  const rig::detail::SinCos ankle =
+      sin_cos(w.state_.legs[static_cast<std::size_t>(leg)].angles.ankle);
+  const double we = -s.heel * ankle.cos + s.ankle_height * ankle.sin;
+  const double wn = -s.heel * ankle.sin - s.ankle_height * ankle.cos - s.shank;
+  const double lower = std::sqrt(we * we + wn * wn);
+  const double distance = std::hypot(target.x - hip.x, target.y - hip.y);
+  if (!(distance < s.thigh + lower) || !(distance > std::abs(s.thigh - lower))) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const double cos_hip =
+      (s.thigh * s.thigh + distance * distance - lower * lower) / (2.0 * s.thigh * distance);
+  return inclination(hip, target) + arccos(std::clamp(cos_hip, -1.0, 1.0));
 }
 
 void WalkerStages::integrate(Walker& w, double h, StepData& d) {
@@ -761,10 +877,17 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
     d.previous[static_cast<std::size_t>(leg)] = l.angles;
     const std::array<double, 4>& c = d.commands[static_cast<std::size_t>(leg)];
     // A longer swing of the thigh swings the shank faster in proportion (see ControllerSet).
+    // (Only the set's own swing knee controller's share: a terrain word's file says its own
+    // velocities.)
     const double reference = w.controllers_->swing_knee_reference_sweep;
-    const double knee_scale = l.phase == Phase::Swing && reference > 0.0
-                                  ? std::abs(l.sweep_end - l.sweep_start) / reference
-                                  : 1.0;
+    double knee_scale = l.phase == Phase::Swing && reference > 0.0
+                            ? std::abs(l.sweep_end - l.sweep_start) / reference
+                            : 1.0;
+    if (l.phase == Phase::Swing && w.controllers_->has_terrain_words()) {
+      const double own = w.controllers_->own_degree(slot(LegPhase::Swing, Joint::Knee),
+                                                    d.metrics[static_cast<std::size_t>(leg)]);
+      if (own < 1.0) knee_scale = own * knee_scale + (1.0 - own);
+    }
     // The hip's command is a share of the sweep per second, the others degrees per second.
     const Joints target{JointPair{c[0], c[1] * per_degree} *
                             JointPair{sweep_scale(l.sweep_start, l.sweep_end), knee_scale},
@@ -825,18 +948,33 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
       LegPoints p = leg_points(w, leg, w.state_.pelvis, l.angles);
       // A swing that drags on (a leg stuck in a deep crouch after an awkward start) gives up
       // and puts the foot down where it is.
-      const bool arriving = l.delta >= kLandingDelta || w.state_.lead < 0 ||
+      // It lands only over its foothold's tread, no edge under its sole: elsewhere the ground is
+      // an obstacle it keeps clear of.
+      FootGround ground = ground_under(*w.terrain_, p);
+      const terrain::Terrain& t = *w.terrain_;
+      const bool over_target =
+          t.run_at(p.ball.x) == l.target_run && !(ground.sole_corners >= 0.0) &&
+          (t.run_at(p.heel.x) == l.target_run || t.run_at(l.target_x) != l.target_run);
+      const bool arriving = (l.delta >= kLandingDelta && over_target) || w.state_.lead < 0 ||
                             w.state_.time - l.swing_start > kLongestSwing;
       const double knee_clearance = p.knee.y - w.terrain_->height(p.knee.x);
       // The clearance wanted grows from nothing at toe off and fades again before landing, so
       // the reflex never jerks the knee when the foot leaves or reaches the ground.
-      const double margin = kSwingClearance * std::clamp((l.delta + 1.0) / 0.5, 0.0, 1.0) *
-                            std::clamp((kLandingDelta - l.delta) / 0.3, 0.0, 1.0);
-      FootGround ground = ground_under(*w.terrain_, p);
+      const double margin = over_target
+                                ? kSwingClearance * std::clamp((l.delta + 1.0) / 0.5, 0.0, 1.0) *
+                                      std::clamp((kLandingDelta - l.delta) / 0.3, 0.0, 1.0)
+                                : kSwingClearance;
       if ((!arriving && foot_depth(p, ground) > -margin) || knee_clearance < kSwingClearance) {
         w.clear_ground(leg, kReflexSpeed * h, margin);
         p = leg_points(w, leg, w.state_.pelvis, l.angles);
         ground = ground_under(*w.terrain_, p);
+        // A foot the reflex could not keep off ground that is not its foothold (a stair's edge)
+        // does not land there: the knee folds as far as it must.
+        if (!over_target && !arriving && foot_depth(p, ground) >= 0.0) {
+          w.clear_ground(leg, w.limits_.maximum.knee, 0.0);
+          p = leg_points(w, leg, w.state_.pelvis, l.angles);
+          ground = ground_under(*w.terrain_, p);
+        }
       }
       const double heel_depth = ground.heel - p.heel.y;
       const double ball_depth = ground.ball - p.ball.y;

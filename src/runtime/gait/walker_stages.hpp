@@ -40,6 +40,9 @@ struct WalkerStages {
   static void step(Walker& w, double h);
   static void measure(Walker& w, StepData& d);
   static void command(Walker& w, StepData& d);
+  // The commands of the legs on terrain whose incline words the set has controllers for (their
+  // blend), replacing what command() or a crowd's batch gave them.
+  static void command_on_terrain(Walker& w, StepData& d);
   static void integrate(Walker& w, double h, StepData& d);
   static void finish_step(Walker& w, double h, StepData& d);
 
@@ -53,7 +56,16 @@ struct WalkerStages {
   static void place_pelvis(Walker& w, int leg, const rig::LegPoints& at_origin);
   // Height of a carrying leg's knee above the ground, from its points with the hip at the origin.
   static double knee_gap(const Walker& w, int leg, const rig::LegPoints& at_origin);
-  static void update_metrics(Walker& w, int leg, const rig::LegPoints& points, MetricValues& m);
+  // `ascent`: how far the set's ascent words hold (ControllerSet::ascent_weight).
+  // `landing_knee`: the knee angle the leg lands with (ControllerSet::landing_knee).
+  static void update_metrics(Walker& w, int leg, const rig::LegPoints& points, double ascent,
+                             double landing_knee, MetricValues& m);
+  static double knee_end_thigh(const Walker& w, int leg, rig::Point hip, rig::Point target);
+  struct LegGround {
+    double incline;  // degrees (Metric::Incline)
+    double stairs;   // 1 or 0 (Metric::Stairs)
+  };
+  static std::array<LegGround, 2> leg_ground(const Walker& w);
 
   // A walker, or a crowd, whose controllers `backend` evaluates (one per character, null for
   // the set's own engines).
