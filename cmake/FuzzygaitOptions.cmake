@@ -19,6 +19,29 @@ endif()
 set(FUZZYGAIT_FLOATING_POINT
   "$<$<CXX_COMPILER_ID:GNU,Clang,AppleClang>:-ffp-contract=off;-fno-math-errno;-fno-trapping-math>")
 
+# The vector code's bodies (src/runtime/simd/lanes.hpp): auto compiles SSE2 lanes on x86-64 and,
+# in translation units of their own, AVX2 ones that run where the processor has AVX2 (chosen at
+# run time); scalar keeps the plain reference bodies only, with the same bits.
+set(FUZZYGAIT_SIMD auto CACHE STRING
+    "Vector code: auto (SSE2, and AVX2 where the CPU has it) or scalar")
+set_property(CACHE FUZZYGAIT_SIMD PROPERTY STRINGS auto scalar)
+if(NOT FUZZYGAIT_SIMD MATCHES "^(auto|scalar)$")
+  message(FATAL_ERROR "FUZZYGAIT_SIMD must be auto or scalar, not '${FUZZYGAIT_SIMD}'")
+endif()
+# The flags of the AVX2 and AVX-512F translation units, empty where there are none.
+set(FUZZYGAIT_AVX2_FLAG "")
+set(FUZZYGAIT_AVX512_FLAG "")
+if(FUZZYGAIT_SIMD STREQUAL "auto" AND CMAKE_SIZEOF_VOID_P EQUAL 8 AND
+   CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64|x64)$")
+  if(MSVC)
+    set(FUZZYGAIT_AVX2_FLAG /arch:AVX2)
+    set(FUZZYGAIT_AVX512_FLAG /arch:AVX512)
+  elseif(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    set(FUZZYGAIT_AVX2_FLAG -mavx2)
+    set(FUZZYGAIT_AVX512_FLAG -mavx512f)
+  endif()
+endif()
+
 function(fuzzygait_configure_target target)
   target_compile_options(${target} PRIVATE ${FUZZYGAIT_WARNINGS} ${FUZZYGAIT_FLOATING_POINT})
   if(FUZZYGAIT_SANITIZE)

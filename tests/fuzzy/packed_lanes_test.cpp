@@ -1,6 +1,8 @@
 // PackedPartition's batch evaluation (vector lanes across calls, for a crowd) against its scalar
 // evaluation, bit for bit: every lane must take the scalar path's branch as a select, at knots,
-// within fuzzylite's tolerance of them, outside the range, and for NaN and infinite inputs.
+// within fuzzylite's tolerance of them, outside the range, and for NaN and infinite inputs. The
+// batch as the machine runs it, the lane kernel with the scalar reference body (simd::scalar) and
+// each vector body the machine runs all give the scalar evaluate()'s bits.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +15,9 @@
 #include "fuzzygait/fuzzy/fll.hpp"
 #include "fuzzygait/fuzzy/partition.hpp"
 #include "fuzzygait/gait/controllers.hpp"
+#include "runtime/fuzzy/packed_batch.hpp"
+#include "runtime/simd/cpu.hpp"
+#include "runtime/simd/lanes.hpp"
 
 using namespace fuzzygait;
 
@@ -71,16 +76,40 @@ void expect_batch_matches_scalar(const fuzzy::Engine& engine, const std::string&
   const bool one_input = partition->input_count() == 1;
   // The whole batch, and short batches at every offset (the lanes left after whole vectors).
   std::vector<double> out(n);
-  packed->evaluate(x0.data(), x1.data(), out.data(), n);
+  fuzzy::detail::evaluate_batch(*packed, x0.data(), x1.data(), out.data(), n);
   if (one_input) {  // the second input may then be left out
     std::vector<double> without(n);
-    packed->evaluate(x0.data(), nullptr, without.data(), n);
+    fuzzy::detail::evaluate_batch(*packed, x0.data(), nullptr, without.data(), n);
     EXPECT_EQ(std::memcmp(without.data(), out.data(), n * sizeof(double)), 0) << label;
   }
+  // Each kernel over the whole vectors: with the scalar body, and each vector body this build has
+  // and this machine runs (the batch above takes the widest only).
+  const fuzzy::detail::PackedView view = fuzzy::detail::PackedPartitionAccess::view(*packed);
+  struct Kernel {
+    const char* name;
+    std::size_t width;
+    std::vector<double> out;
+  };
+  std::vector<Kernel> kernels;
+  auto run = [&](const char* name, std::size_t width, auto kernel) {
+    const std::size_t whole = n - n % width;
+    Kernel k{name, width, std::vector<double>(whole)};
+    kernel(view, x0.data(), one_input ? nullptr : x1.data(), k.out.data(), whole);
+    kernels.push_back(std::move(k));
+  };
+  run("scalar-body kernel", 4, fuzzy::detail::evaluate_packed_lanes<simd::scalar::Double4>);
+  run("scalar-body kernel, 8 lanes", 8,
+      fuzzy::detail::evaluate_packed_lanes<simd::scalar::Double8>);
+#if defined(FUZZYGAIT_SIMD_AVX2)
+  if (simd::has_avx2()) run("AVX2 kernel", 4, fuzzy::detail::evaluate_packed_avx2);
+#endif
+#if defined(FUZZYGAIT_SIMD_AVX512)
+  if (simd::has_avx512()) run("AVX-512 kernel", 8, fuzzy::detail::evaluate_packed_avx512);
+#endif
   for (std::size_t length = 0; length <= 9; ++length) {
     for (std::size_t at = 0; at + length <= 40; at += 1 + length) {
       std::vector<double> part(length + 1, 123.0);
-      packed->evaluate(&x0[at], &x1[at], part.data(), length);
+      fuzzy::detail::evaluate_batch(*packed, &x0[at], &x1[at], part.data(), length);
       EXPECT_EQ(part[length], 123.0) << label << ": wrote past the batch";
       for (std::size_t i = 0; i < length; ++i) {
         EXPECT_EQ(std::memcmp(&part[i], &out[at + i], sizeof(double)), 0) << label;
@@ -94,35 +123,35 @@ void expect_batch_matches_scalar(const fuzzy::Engine& engine, const std::string&
       ADD_FAILURE() << label << ": lane " << i << " x0 " << x0[i] << " x1 " << x1[i] << " batch "
                     << out[i] << " scalar " << expected;
     }
+    for (const Kernel& k : kernels) {
+      if (i < k.out.size() && std::memcmp(&expected, &k.out[i], sizeof expected) != 0 &&
+          ++differ <= 3) {
+        ADD_FAILURE() << label << ": lane " << i << " x0 " << x0[i] << " x1 " << x1[i] << " "
+                      << k.name << " " << k.out[i] << " scalar " << expected;
+      }
+    }
   }
   EXPECT_EQ(differ, 0) << label;
 }
 
-// On a machine with AVX2 (GCC, x86-64) the batch runs in vector lanes, so these tests compare the
-// vector kernel with the scalar path, not the scalar path with itself.
-TEST(PackedLanes, RunInVectorsWhereTheMachineHasThem) {
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-  __builtin_cpu_init();
-  EXPECT_EQ(fuzzy::PackedPartition::batch_in_vectors(), __builtin_cpu_supports("avx2") != 0);
-#else
-  EXPECT_FALSE(fuzzy::PackedPartition::batch_in_vectors());
-#endif
-  RecordProperty("batch_in_vectors", fuzzy::PackedPartition::batch_in_vectors() ? "yes" : "no");
+// On a machine with AVX2 or AVX-512F (x86-64, the default build) the batch runs in vector lanes,
+// the widest it has, so these tests compare a vector kernel with the scalar path, not the scalar
+// path with itself.
+TEST(PackedLanes, RunInTheWidestVectorsTheMachineHas) {
+  const std::size_t expected = simd::has_avx512() ? 8 : (simd::has_avx2() ? 4 : 1);
+  EXPECT_EQ(fuzzy::detail::batch_vector_lanes(), expected);
+  RecordProperty("batch_vector_lanes", std::to_string(fuzzy::detail::batch_vector_lanes()));
 }
 
-// Padding rounds up to whole vectors only where there are vectors, and never past the next one.
-TEST(PackedLanes, PaddedLanesAreWholeVectorsWhereThereAreVectors) {
-  using fuzzy::PackedPartition;
-  constexpr std::size_t width = PackedPartition::kVectorLanes;
+// Padding rounds up to whole vectors, and never past the next one.
+TEST(PackedLanes, PaddedLanesAreWholeVectors) {
+  const std::size_t width = fuzzy::detail::batch_vector_lanes();
+  EXPECT_EQ(fuzzy::detail::kMaxBatchVectorLanes % width, 0u);
   for (std::size_t n = 0; n <= 3 * width + 1; ++n) {
-    const std::size_t padded = PackedPartition::padded_lanes(n);
-    if (PackedPartition::batch_in_vectors()) {
-      EXPECT_EQ(padded % width, 0u) << n;
-      EXPECT_GE(padded, n);
-      EXPECT_LT(padded, n + width) << n;
-    } else {
-      EXPECT_EQ(padded, n);
-    }
+    const std::size_t padded = fuzzy::detail::padded_lanes(n);
+    EXPECT_EQ(padded % width, 0u) << n;
+    EXPECT_GE(padded, n);
+    EXPECT_LT(padded, n + width) << n;
   }
 }
 
@@ -180,7 +209,7 @@ TEST(PackedLanes, MinimumConjunctionWideInputsAndANanDefault) {
   const double at_tolerance[4] = {1e-6, 1e-6, 0.99e-6, 0.99e-6};
   const double y_knot[4] = {-1.0, 1.0, -1.0, 1.0};
   double lanes[4];
-  wide_packed.evaluate(at_tolerance, y_knot, lanes, 4);
+  fuzzy::detail::evaluate_batch(wide_packed, at_tolerance, y_knot, lanes, 4);
   for (int i = 0; i < 4; ++i) {
     const double scalar = wide_packed.evaluate(at_tolerance[i], y_knot[i]);
     EXPECT_EQ(std::memcmp(&lanes[i], &scalar, sizeof scalar), 0) << i;
@@ -207,7 +236,7 @@ TEST(PackedLanes, MinimumConjunctionWideInputsAndANanDefault) {
   const double x0[4] = {0.5, 0.5, 0.5, 0.5};
   const double x1[4] = {-1e308, -1e308, -1e308, -1e308};
   double out[4];
-  packed.evaluate(x0, x1, out, 4);
+  fuzzy::detail::evaluate_batch(packed, x0, x1, out, 4);
   const double scalar = packed.evaluate(0.5, -1e308);
   EXPECT_FALSE(std::isnan(scalar));
   for (const double lane : out)

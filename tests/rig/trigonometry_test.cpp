@@ -3,6 +3,9 @@
 // and the same bits on every machine (golden values).
 #include "runtime/rig/trigonometry.hpp"
 
+#include "runtime/simd/cpu.hpp"
+#include "runtime/simd/lanes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -11,6 +14,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace fuzzygait::rig::detail {
@@ -91,6 +95,8 @@ TEST(Trigonometry, BatchGivesEachLaneTheScalarsBits) {
   }
   x[7] = -0.0;
   x[8] = kInf;
+  x[9] = -kInf;
+  x[10] = 4.9e-324;
   for (std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{7}, std::size_t{8},
                         std::size_t{13}, x.size()}) {
     std::vector<double> s(n + 1, 5.0);
@@ -101,6 +107,94 @@ TEST(Trigonometry, BatchGivesEachLaneTheScalarsBits) {
       const SinCos one = sin_cos(x[i]);
       EXPECT_EQ(std::bit_cast<std::uint64_t>(s[i]), std::bit_cast<std::uint64_t>(one.sin)) << x[i];
       EXPECT_EQ(std::bit_cast<std::uint64_t>(c[i]), std::bit_cast<std::uint64_t>(one.cos)) << x[i];
+    }
+  }
+}
+
+// The batch's lane kernel (in AVX-512 or AVX2 lanes in the batch above, where the machine has
+// them) with the scalar reference body: each lane the one-lane call's bits, and the lanes libm
+// must answer (|x| from kSinCosExactBelow on, infinities) reported rather than answered.
+template <class D>
+void expect_scalar_body_gives_scalar_bits() {
+  std::mt19937_64 random(9);
+  std::uniform_real_distribution<double> angle(-7.0, 7.0);
+  const double special[] = {0.0,
+                            -0.0,
+                            kNaN,
+                            kInf,
+                            -kInf,
+                            1e-30,
+                            -1e-300,
+                            4.9e-324,
+                            1.0e6,
+                            1.0e8,
+                            0x1p-27,
+                            -0x1p-27,
+                            0x1p-28,
+                            std::numbers::pi / 4,
+                            -std::numbers::pi / 2,
+                            999999.9};
+  std::vector<double> x(std::begin(special), std::end(special));
+  while (x.size() < 400)
+    x.push_back(angle(random));
+  for (std::size_t at = 0; at + D::kLanes <= x.size(); at += D::kLanes) {
+    D s;
+    D c;
+    const typename D::Mask beyond = sin_cos_vector(D::load(&x[at]), s, c);
+    for (std::size_t k = 0; k < D::kLanes; ++k) {
+      const double v = x[at + k];
+      const bool libm = std::abs(v) >= kSinCosExactBelow;
+      EXPECT_EQ(beyond.lane[k], libm) << v;
+      if (libm) continue;
+      const SinCos one = sin_cos(v);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(s.lane[k]), std::bit_cast<std::uint64_t>(one.sin))
+          << v;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(c.lane[k]), std::bit_cast<std::uint64_t>(one.cos))
+          << v;
+    }
+  }
+}
+
+TEST(Trigonometry, LaneKernelWithTheScalarBodyGivesEachLaneTheScalarsBits) {
+  expect_scalar_body_gives_scalar_bits<simd::scalar::Double4>();
+  expect_scalar_body_gives_scalar_bits<simd::scalar::Double8>();
+}
+
+// Each vector body this build has and this machine runs, called directly (the batch above takes
+// the widest only): the same bits, and whether a lane needs libm's answer.
+TEST(Trigonometry, EachVectorKernelGivesEachLaneTheScalarsBits) {
+  std::mt19937_64 random(10);
+  std::uniform_real_distribution<double> angle(-7.0, 7.0);
+  std::vector<double> x(400);
+  for (double& v : x)
+    v = angle(random);
+  x[5] = kNaN;
+  x[6] = -0.0;
+  x[7] = 1e-300;
+  using Kernel = bool (*)(const double*, double*, double*, std::size_t);
+  std::vector<std::pair<const char*, Kernel>> kernels;
+#if defined(FUZZYGAIT_SIMD_AVX2)
+  if (simd::has_avx2()) kernels.emplace_back("AVX2", sin_cos_avx2);
+#endif
+#if defined(FUZZYGAIT_SIMD_AVX512)
+  if (simd::has_avx512()) kernels.emplace_back("AVX-512", sin_cos_avx512);
+#endif
+  if (kernels.empty()) GTEST_SKIP() << "no vector kernel on this build and machine";
+  for (const auto& [name, kernel] : kernels) {
+    for (const bool with_huge : {false, true}) {
+      std::vector<double> in = x;
+      if (with_huge) in[203] = -3.0e7;
+      std::vector<double> s(in.size());
+      std::vector<double> c(in.size());
+      EXPECT_EQ(kernel(in.data(), s.data(), c.data(), in.size()), with_huge) << name;
+      for (std::size_t i = 0; i < in.size(); ++i) {
+        if (with_huge && i == 203) continue;  // the caller's to replace
+        const SinCos one = sin_cos(in[i]);
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(s[i]), std::bit_cast<std::uint64_t>(one.sin))
+            << name << " " << in[i];
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(c[i]), std::bit_cast<std::uint64_t>(one.cos))
+            << name << " " << in[i];
+      }
     }
   }
 }

@@ -724,8 +724,9 @@ svg::Figure plot_filmstrip(const eval::Motion& motion, const terrain::Terrain& t
 
   // Contact over the stride: a bar per foot while it bears on the ground.
   svg::Panel& contact = figure.add_panel();
-  const auto percent_of = [&](std::size_t i) {
-    return 100.0 * static_cast<double>(i - begin) / static_cast<double>(end - begin);
+  // (The stride's ends copied in: Clang 14 cannot capture structured bindings.)
+  const auto percent_of = [first = begin, last = end](std::size_t i) {
+    return 100.0 * static_cast<double>(i - first) / static_cast<double>(last - first);
   };
   contact.title("Feet on the ground (grey: both)")
       .x_label("stride (%)")

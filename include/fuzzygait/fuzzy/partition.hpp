@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzzygait/compiler.hpp"
 #include "fuzzygait/fuzzy/compare.hpp"
 #include "fuzzygait/fuzzy/engine.hpp"
 #include "fuzzygait/fuzzy/shapes.hpp"
@@ -31,11 +32,10 @@ struct PartitionDegrees {
   T upper_degree = T(0.0);  // degree of term lower + 1 (zero when lower is the last term)
 };
 
-// Always inlined: the walker evaluates eight controllers a time step, and the call returned its
-// result through memory (inlining it, with level ground's height, took a step from 405 to 383 ns).
+// Always inlined: the walker evaluates eight controllers a time step.
 template <class T>
-[[gnu::always_inline]] inline PartitionDegrees<T> partition_degrees(const T* knots,
-                                                                    std::size_t count, const T& x) {
+FUZZYGAIT_ALWAYS_INLINE PartitionDegrees<T> partition_degrees(const T* knots, std::size_t count,
+                                                              const T& x) {
   PartitionDegrees<T> d;
   if (count < 2 || !(x > knots[0])) return d;
   if (!(x < knots[count - 1])) {
@@ -65,12 +65,11 @@ enum class Conjunction { Product, Minimum };
 // can fire. Without two_inputs, knots1 and count1 are not read. The consequent of terms (i, j) is
 // at consequents[i * row_stride + j].
 template <class T>
-[[gnu::always_inline]] inline T evaluate_partition(bool two_inputs, const T* knots0,
-                                                   std::size_t count0, const T* knots1,
-                                                   std::size_t count1, const T* consequents,
-                                                   std::size_t row_stride, Conjunction conjunction,
-                                                   const T& default_value, const T& x0,
-                                                   const T& x1) {
+FUZZYGAIT_ALWAYS_INLINE T evaluate_partition(bool two_inputs, const T* knots0, std::size_t count0,
+                                             const T* knots1, std::size_t count1,
+                                             const T* consequents, std::size_t row_stride,
+                                             Conjunction conjunction, const T& default_value,
+                                             const T& x0, const T& x1) {
   if (detail::is_nan(x0) || (two_inputs && detail::is_nan(x1))) return default_value;
   const PartitionDegrees<T> a = partition_degrees(knots0, count0, x0);
   T sum(0.0);
@@ -120,10 +119,13 @@ struct PartitionController {
   }
 };
 
+namespace detail {
+struct PackedPartitionAccess;
+}
+
 // A PartitionController<double> of at most kMaxKnots knots per input in one flat block, with its
-// shape (one input, two with product or minimum) decided once: the walker evaluates eight a time
-// step, and following the vectors' heap pointers and re-deciding the shape was a third of each
-// call. The same evaluation (evaluate_partition), so the same bits as the controller it packs.
+// shape (one input, two with product or minimum) decided once, for the walker's eight calls a time
+// step. The same evaluation (evaluate_partition), so the same bits as the controller it packs.
 class PackedPartition {
  public:
   static constexpr std::size_t kMaxKnots = 8;
@@ -143,24 +145,10 @@ class PackedPartition {
     }
     return default_value_;
   }
-  // out[i] = evaluate(x0[i], x1[i]) for i < n, bit for bit, in vectors across the lanes (AVX2
-  // when the machine has it, chosen once): a crowd's characters through one controller at once.
-  // x1 is not read for a one-input controller (it may then be null).
-  void evaluate(const double* x0, const double* x1, double* out, std::size_t n) const;
-  static constexpr std::size_t kVectorLanes = 4;
-  // Whether that batch runs in vector lanes on this machine (else it calls evaluate() in turn).
-  static bool batch_in_vectors();
-  // How many lanes to give the batch for n: with vectors, n rounded up to a multiple of
-  // kVectorLanes (the last few lanes would otherwise go one by one, at more cost than a padded
-  // vector whose extra outputs the caller leaves unread), else n. A caller may pass this only
-  // where its arrays have room for it.
-  static std::size_t padded_lanes(std::size_t n) {
-    return batch_in_vectors() ? (n + kVectorLanes - 1) / kVectorLanes * kVectorLanes : n;
-  }
 
  private:
   enum class Shape : std::uint8_t { OneInput, Product, Minimum };
-  friend struct PackedLanes;  // the vector kernel of the batch evaluate()
+  friend struct detail::PackedPartitionAccess;  // a crowd's batch (internal)
 
   // One straight path per shape (evaluate_partition is inlined with the constants).
   double evaluate_as(bool two_inputs, std::size_t row_stride, Conjunction conjunction, double x0,

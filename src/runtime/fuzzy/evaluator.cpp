@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fuzzygait/compiler.hpp"
 #include "fuzzygait/fuzzy/shapes.hpp"
 
 namespace fuzzygait::fuzzy {
@@ -176,10 +177,9 @@ double apply_hedges(const Hedge* hedges, std::uint32_t count, double value) {
 // they equal fuzzylite's operators: when b is not NaN, nan_min(a, b) is a < b ? a : b and
 // nan_max(a, b) is a > b ? a : b.
 template <class Visit>
-[[gnu::always_inline]] inline void max_with_implied(TNorm implication, const double* y,
-                                                    double degree, const double* mu,
-                                                    std::size_t first, std::size_t last,
-                                                    Visit visit) {
+FUZZYGAIT_ALWAYS_INLINE void max_with_implied(TNorm implication, const double* y, double degree,
+                                              const double* mu, std::size_t first, std::size_t last,
+                                              Visit visit) {
   if (implication == TNorm::Minimum) {
     for (std::size_t i = first; i < last; ++i) {
       const double implied = y[i] < degree ? y[i] : degree;
@@ -483,8 +483,7 @@ Workspace Evaluator::make_workspace() const {
 }
 
 // A Linear term: its coefficients times the input values, then its constant if it has one.
-[[gnu::always_inline]] inline double Evaluator::linear(const CompiledTerm& t,
-                                                       const Workspace& w) const {
+FUZZYGAIT_ALWAYS_INLINE double Evaluator::linear(const CompiledTerm& t, const Workspace& w) const {
   const double* p = parameters_.data() + t.parameters;
   const double* inputs = w.input_values_.data();
   const std::size_t n = inputs_.size();
@@ -497,8 +496,8 @@ Workspace Evaluator::make_workspace() const {
 }
 
 // The common linear shapes inline, every other through general_membership().
-[[gnu::always_inline]] inline double Evaluator::fuzzify(const CompiledTerm& t, double x,
-                                                        Workspace& w) const {
+FUZZYGAIT_ALWAYS_INLINE double Evaluator::fuzzify(const CompiledTerm& t, double x,
+                                                  Workspace& w) const {
   if (t.parameters_not_nan) {  // else the templated shapes, NaN parameters and all
     const double* p = parameters_.data() + t.parameters;
     switch (t.kind) {
@@ -664,9 +663,9 @@ double Evaluator::antecedent(const CompiledRule& rule, const CompiledBlock& bloc
 
 // The rule's activation degree (fuzzylite's Rule::activationDegree): a left-deep antecedent
 // folds its proposition values without a stack, any other runs its postfix program.
-[[gnu::always_inline]] inline double Evaluator::activation_degree(const CompiledRule& rule,
-                                                                  const CompiledBlock& block,
-                                                                  Workspace& w) const {
+FUZZYGAIT_ALWAYS_INLINE double Evaluator::activation_degree(const CompiledRule& rule,
+                                                            const CompiledBlock& block,
+                                                            Workspace& w) const {
   if (!rule.left_deep) return antecedent(rule, block, w);
   const std::int32_t* code = antecedent_.data() + rule.antecedent;
   const double* values = w.proposition_values_.data();
@@ -680,14 +679,14 @@ double Evaluator::antecedent(const CompiledRule& rule, const CompiledBlock& bloc
 }
 
 // Hedges of a conclusion, last to first; rare, so kept out of the rule loops.
-[[gnu::noinline]] double Evaluator::hedge(const CompiledProposition& p, double degree) const {
+FUZZYGAIT_NOINLINE double Evaluator::hedge(const CompiledProposition& p, double degree) const {
   return apply_hedges(hedges_.data() + p.hedges, p.hedge_count, degree);
 }
 
 // Adds the rule's conclusions with the activation degree (fuzzylite's Rule::trigger): to the
 // activated terms of the output, or at once to the sums of an eager weighted defuzzifier.
-[[gnu::always_inline]] inline void Evaluator::trigger(const CompiledRule& rule, double degree,
-                                                      TNorm implication, Workspace& w) const {
+FUZZYGAIT_ALWAYS_INLINE void Evaluator::trigger(const CompiledRule& rule, double degree,
+                                                TNorm implication, Workspace& w) const {
   if (!(degree >= kTolerance)) return;  // !is_gt(degree, 0.0), NaN included
   const CompiledProposition* conclusion = conclusions_.data() + rule.conclusions;
   const CompiledProposition* const end = conclusion + rule.conclusion_count;
@@ -716,8 +715,8 @@ double Evaluator::antecedent(const CompiledRule& rule, const CompiledBlock& bloc
 }
 
 // General activation, fuzzylite's default: every rule fires with its activation degree.
-[[gnu::always_inline]] inline void Evaluator::activate_general(const CompiledBlock& block,
-                                                               Workspace& w) const {
+FUZZYGAIT_ALWAYS_INLINE void Evaluator::activate_general(const CompiledBlock& block,
+                                                         Workspace& w) const {
   const CompiledRule* rules = rules_.data() + block.first_rule;
   const std::uint32_t n = block.rule_count;
   for (const CompiledRule* rule = rules; rule != rules + n; ++rule) {
@@ -984,8 +983,8 @@ double Evaluator::integral(const CompiledOutput& o, Workspace& w) const {
 // Tsukamoto does, as fuzzylite 6 does in effect: it infers the type from the first Activated
 // wrapper, never a Constant, Linear or Function itself (WeightedAverage::defuzzify,
 // WeightedSum::defuzzify). For those terms it is the same value.
-[[gnu::noinline]] double Evaluator::weighted_value(const CompiledOutput& o, const CompiledTerm& t,
-                                                   double degree, Workspace& w) const {
+FUZZYGAIT_NOINLINE double Evaluator::weighted_value(const CompiledOutput& o, const CompiledTerm& t,
+                                                    double degree, Workspace& w) const {
   if (t.kind == TermKind::Constant) return parameters_[t.parameters];  // in both readings
   if (o.defuzzifier.type == Defuzzifier::WeightedType::TakagiSugeno) {
     return membership(t, degree, w);
@@ -1008,7 +1007,7 @@ double Evaluator::weighted(const CompiledOutput& o, Workspace& w) const {
   return average ? sum / weights : sum;
 }
 
-[[gnu::always_inline]] inline void Evaluator::defuzzify(std::uint32_t output, Workspace& w) const {
+FUZZYGAIT_ALWAYS_INLINE void Evaluator::defuzzify(std::uint32_t output, Workspace& w) const {
   const CompiledOutput& o = outputs_[output];
   if (!o.enabled) return;
   double& value = w.output_values_[output];

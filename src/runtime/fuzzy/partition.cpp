@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <stdexcept>
+
+#include "runtime/fuzzy/packed_batch.hpp"
+#include "runtime/simd/cpu.hpp"
 
 namespace fuzzygait::fuzzy {
 namespace {
@@ -204,169 +206,51 @@ std::optional<PackedPartition> PackedPartition::pack(const PartitionController<d
   return p;
 }
 
-// The batch: the steps of evaluate_partition lane for lane, as selects instead of branches, so
-// every lane gets the bits the scalar call gives (a rule that does not fire leaves the sums as
-// they are; a NaN input gives the default).
-struct PackedLanes {
-  static void scalar(const PackedPartition& p, const double* x0, const double* x1, double* out,
-                     std::size_t n) {
-    const bool one_input = p.shape_ == PackedPartition::Shape::OneInput;
-    for (std::size_t i = 0; i < n; ++i)
-      out[i] = p.evaluate(x0[i], one_input ? 0.0 : x1[i]);
-  }
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-  // In GCC's vector extensions, four lanes: one AVX2 register. (Eight lanes of AVX-512, each
-  // lane's consequent loaded on its own, took 10 ns a lane against 4.0 here and 6.6 scalar.)
-  typedef double Real __attribute__((vector_size(32)));
-  typedef std::int64_t Mask __attribute__((vector_size(32)));
-  [[gnu::target("avx2")]] static void avx2(const PackedPartition& p, const double* x0,
-                                           const double* x1, double* out, std::size_t n);
-#endif
-};
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#include <immintrin.h>
-
-namespace {
-
-using Real = PackedLanes::Real;
-using Mask = PackedLanes::Mask;
-
-[[gnu::target("avx2"), gnu::always_inline]] inline Real broadcast(double value) {
-  return Real{value, value, value, value};
-}
-[[gnu::target("avx2"), gnu::always_inline]] inline Mask broadcast_index(std::int64_t value) {
-  return Mask{value, value, value, value};
-}
-
-// partition_degrees in every lane (x not NaN; a NaN lane's result is replaced by the default).
-[[gnu::target("avx2"), gnu::always_inline]] inline void lane_degrees(const double* knots,
-                                                                     std::size_t count, Real x,
-                                                                     Mask& lower,
-                                                                     Real& lower_degree,
-                                                                     Real& upper_degree) {
-  const Real one = broadcast(1.0);
-  const Real tolerance = broadcast(kTolerance);
-  // knots[i] <= x < knots[i + 1]: i counts the inner knots at or below x.
-  Mask i = broadcast_index(0);
-  Real left = broadcast(knots[0]);
-  Real right = broadcast(knots[1]);
-  for (std::size_t k = 1; k + 1 < count; ++k) {
-    const Real knot = broadcast(knots[k]);
-    const Mask at_or_above = x >= knot;  // -1 where true
-    i -= at_or_above;
-    left = at_or_above ? knot : left;
-    right = at_or_above ? broadcast(knots[k + 1]) : right;
-  }
-  lower_degree = x - left < tolerance ? one : (right - x) / (right - left);
-  upper_degree = right - x < tolerance ? one : (x - left) / (right - left);
-  const Mask below = !(x > broadcast(knots[0]));
-  const Mask above = !(x < broadcast(knots[count - 1]));
-  lower_degree = (below | above) ? one : lower_degree;
-  upper_degree = (below | above) ? broadcast(0.0) : upper_degree;
-  lower = above ? broadcast_index(static_cast<std::int64_t>(count - 1)) : i;
-  lower = below ? broadcast_index(0) : lower;
-}
-
-// A rule fires in each lane where its degree reaches the tolerance: its consequent (at rule[lane]
-// in the table) weighted by the degree.
-[[gnu::target("avx2"), gnu::always_inline]] inline void lane_fire(Real degree, Mask rule,
-                                                                  const double* consequents,
-                                                                  Real& sum, Real& weights) {
-  const Mask fires = degree >= broadcast(kTolerance);
-  // A masked gather: a lane that does not fire loads nothing (its index may lie past the table).
-  const Real consequent = reinterpret_cast<Real>(
-      _mm256_mask_i64gather_pd(_mm256_setzero_pd(), consequents, reinterpret_cast<__m256i>(rule),
-                               reinterpret_cast<__m256d>(fires), 8));
-  sum = fires ? sum + degree * consequent : sum;
-  weights = fires ? weights + degree : weights;
-}
-
-// nan_min: a NaN degree (finite knots more than the largest double apart) yields to the other.
-[[gnu::target("avx2"), gnu::always_inline]] inline Real lane_minimum(Real a, Real b) {
-  return a != a ? b : (b != b ? a : (a < b ? a : b));
-}
-
-}  // namespace
-
-void PackedLanes::avx2(const PackedPartition& p, const double* x0, const double* x1, double* out,
-                       std::size_t n) {
+detail::PackedView detail::PackedPartitionAccess::view(const PackedPartition& p) {
   using Shape = PackedPartition::Shape;
-  constexpr std::size_t kWidth = PackedPartition::kVectorLanes;
-  static_assert(sizeof(Real) == kWidth * sizeof(double));
-  const double* consequents = p.consequents_.data();
-  const std::size_t whole = n - n % kWidth;
-  for (std::size_t at = 0; at < whole; at += kWidth) {
-    Real a;
-    std::memcpy(&a, x0 + at, sizeof a);
-    Mask a_lower;
-    Real a_low;
-    Real a_high;
-    lane_degrees(p.knots_[0].data(), p.counts_[0], a, a_lower, a_low, a_high);
-    Real sum = broadcast(0.0);
-    Real weights = broadcast(0.0);
-    Mask nan = a != a;
-    if (p.shape_ == Shape::OneInput) {
-      lane_fire(a_low, a_lower, consequents, sum, weights);
-      lane_fire(a_high, a_lower + 1, consequents, sum, weights);
-    } else {
-      Real b;
-      std::memcpy(&b, x1 + at, sizeof b);
-      nan |= b != b;
-      Mask b_lower;
-      Real b_low;
-      Real b_high;
-      lane_degrees(p.knots_[1].data(), p.counts_[1], b, b_lower, b_low, b_high);
-      const auto stride = static_cast<std::int64_t>(PackedPartition::kMaxKnots);
-      const Mask rule = a_lower * stride + b_lower;
-      if (p.shape_ == Shape::Product) {
-        lane_fire(a_low * b_low, rule, consequents, sum, weights);
-        lane_fire(a_low * b_high, rule + 1, consequents, sum, weights);
-        lane_fire(a_high * b_low, rule + stride, consequents, sum, weights);
-        lane_fire(a_high * b_high, rule + stride + 1, consequents, sum, weights);
-      } else {
-        lane_fire(lane_minimum(a_low, b_low), rule, consequents, sum, weights);
-        lane_fire(lane_minimum(a_low, b_high), rule + 1, consequents, sum, weights);
-        lane_fire(lane_minimum(a_high, b_low), rule + stride, consequents, sum, weights);
-        lane_fire(lane_minimum(a_high, b_high), rule + stride + 1, consequents, sum, weights);
-      }
-    }
-    const Real average = sum / weights;
-    const Mask defined = (weights > broadcast(0.0)) & ~nan;
-    const Real result = defined ? average : broadcast(p.default_value_);
-    std::memcpy(out + at, &result, sizeof result);
-  }
-  scalar(p, x0 + whole, x1 != nullptr ? x1 + whole : nullptr, out + whole, n - whole);
+  static_assert(PackedPartition::kMaxKnots == kPackedRowStride);
+  PackedView v{};
+  v.knots[0] = p.knots_[0].data();
+  v.knots[1] = p.knots_[1].data();
+  v.counts[0] = p.counts_[0];
+  v.counts[1] = p.counts_[1];
+  v.consequents = p.consequents_.data();
+  v.default_value = p.default_value_;
+  v.tolerance = kTolerance;
+  v.shape = p.shape_ == Shape::OneInput  ? PackedShape::OneInput
+            : p.shape_ == Shape::Product ? PackedShape::Product
+                                         : PackedShape::Minimum;
+  return v;
 }
 
-bool PackedPartition::batch_in_vectors() {
-  static const bool has_avx2 = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  return has_avx2;
+std::size_t detail::batch_vector_lanes() {
+  if (simd::has_avx512()) return 8;
+  if (simd::has_avx2()) return 4;
+  return 1;
 }
 
-void PackedPartition::evaluate(const double* x0, const double* x1, double* out,
-                               std::size_t n) const {
-  if (batch_in_vectors()) {
-    PackedLanes::avx2(*this, x0, x1, out, n);
-  } else {
-    PackedLanes::scalar(*this, x0, x1, out, n);
-  }
-}
-
-#else
-
-bool PackedPartition::batch_in_vectors() {
-  return false;
-}
-
-void PackedPartition::evaluate(const double* x0, const double* x1, double* out,
-                               std::size_t n) const {
-  PackedLanes::scalar(*this, x0, x1, out, n);
-}
-
+void detail::evaluate_batch(const PackedPartition& p, const double* x0, const double* x1,
+                            double* out, std::size_t n) {
+  const PackedView view = PackedPartitionAccess::view(p);
+  const bool one_input = view.shape == PackedShape::OneInput;
+  std::size_t done = 0;
+  // Whole vectors of the lanes [done, done + count).
+  [[maybe_unused]] auto in_vectors = [&](std::size_t width, auto kernel) {
+    const std::size_t count = (n - done) / width * width;
+    if (count == 0) return;
+    kernel(view, x0 + done, one_input ? nullptr : x1 + done, out + done, count);
+    done += count;
+  };
+#if defined(FUZZYGAIT_SIMD_AVX512)
+  if (simd::has_avx512()) in_vectors(8, evaluate_packed_avx512);
 #endif
+#if defined(FUZZYGAIT_SIMD_AVX2)
+  if (simd::has_avx2()) in_vectors(4, evaluate_packed_avx2);
+#endif
+  // The remaining lanes, and every lane without vectors: the scalar path is faster than the
+  // lanes' selects one at a time.
+  for (std::size_t i = done; i < n; ++i)
+    out[i] = p.evaluate(x0[i], one_input ? 0.0 : x1[i]);
+}
 
 }  // namespace fuzzygait::fuzzy

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "runtime/fuzzy/packed_batch.hpp"
 #include "runtime/gait/walker_stages.hpp"
 #include "runtime/rig/trigonometry.hpp"
 
@@ -123,16 +124,16 @@ void Crowd::command(std::size_t first, std::size_t count) {
   }
   // Each phase's lanes padded to whole vectors (the padding holds what earlier steps left there;
   // its outputs are unread). A phase has room for every lane padding can add.
-  static_assert(kLanesPerSlot % fuzzy::PackedPartition::kVectorLanes == 0);
-  const std::size_t lanes_in[2] = {fuzzy::PackedPartition::padded_lanes(legs_in[0]),
-                                   fuzzy::PackedPartition::padded_lanes(legs_in[1])};
+  static_assert(kLanesPerSlot % fuzzy::detail::kMaxBatchVectorLanes == 0);
+  const std::size_t lanes_in[2] = {fuzzy::detail::padded_lanes(legs_in[0]),
+                                   fuzzy::detail::padded_lanes(legs_in[1])};
   for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
     const std::size_t phase = s / 4;
     const std::size_t lane = s * kLanesPerSlot;
     const double* metrics = &metrics_[phase * kMetrics * kLanesPerSlot];
-    packed_[s]->evaluate(metrics + input_of_slot_[s][0] * kLanesPerSlot,
-                         metrics + input_of_slot_[s][1] * kLanesPerSlot, &output_[lane],
-                         lanes_in[phase]);
+    fuzzy::detail::evaluate_batch(*packed_[s], metrics + input_of_slot_[s][0] * kLanesPerSlot,
+                                  metrics + input_of_slot_[s][1] * kLanesPerSlot, &output_[lane],
+                                  lanes_in[phase]);
   }
   // Each leg's four outputs, a slot's lanes apart, to its commands; a leg on terrain whose words
   // the set has controllers for blends them, as a Walker does.

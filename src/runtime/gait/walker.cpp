@@ -17,6 +17,7 @@
 #include "runtime/common/splitmix64.hpp"
 #include "runtime/gait/walker_stages.hpp"
 #include "runtime/rig/trigonometry.hpp"
+#include "runtime/simd/lanes.hpp"
 
 namespace fuzzygait::gait {
 namespace {
@@ -147,11 +148,10 @@ Point contact_point(const LegPoints& p, Phase phase) {
   return phase == Phase::Ball ? p.ball : p.heel;
 }
 
-// Two joints of a leg (hip and knee, or ankle and toe) as one GCC vector, the width of every
-// x86-64's SSE2: each operation is the same IEEE operation on each joint, so the bits are the
-// scalar code's, in fewer instructions.
-typedef double JointPair __attribute__((vector_size(2 * sizeof(double))));
-typedef std::int64_t PairMask __attribute__((vector_size(2 * sizeof(double))));
+// Two joints of a leg (hip and knee, or ankle and toe) as one lane pair (SSE2 on x86-64): each
+// operation is the same IEEE operation on each joint, so the bits are the scalar code's, in fewer
+// instructions.
+using JointPair = simd::Double2;
 struct Joints {
   JointPair hip_knee;
   JointPair ankle_toe;
@@ -161,11 +161,6 @@ Joints joints(const LegAngles& a) {
 }
 void store(LegAngles& a, const Joints& v) {
   a = std::bit_cast<LegAngles>(v);
-}
-// Joint by joint, `yes` where the mask is set, else `no`.
-JointPair select(PairMask mask, JointPair yes, JointPair no) {
-  return std::bit_cast<JointPair>((mask & std::bit_cast<PairMask>(yes)) |
-                                  (~mask & std::bit_cast<PairMask>(no)));
 }
 // std::clamp joint by joint (a NaN stays NaN).
 JointPair clamp(JointPair v, JointPair low, JointPair high) {

@@ -15,7 +15,9 @@
 #include <cstdint>
 #include <limits>
 
+#include "fuzzygait/compiler.hpp"
 #include "fuzzygait/rig/rig.hpp"
+#include "runtime/rig/sin_cos_vector.hpp"
 
 namespace fuzzygait::rig::detail {
 
@@ -24,48 +26,30 @@ struct SinCos {
   double cos = 1.0;
 };
 
-// Exact below this |x|: the reduction multiplies pi/2's first 33 bits by the quadrant count.
-inline constexpr double kSinCosExactBelow = 1.0e6;
-
 // sin and cos of x[i] for i < N. Branch-free in the lanes, so a compiler can vectorise the
 // loop; a lane with |x| beyond kSinCosExactBelow (or infinite) is then given libm's answer, so
 // each lane's bits do not depend on its neighbours (a crowd's batch equals a lone walker's call).
-// (Always inlined, so that each vector width's copy of a batch gets its own at any -O level.)
+// (Always inlined, so that each caller's copy is vectorised for its width at any -O level.)
 template <std::size_t N>
-[[gnu::always_inline]] inline void sin_cos_lanes(const double* __restrict x, double* __restrict sin,
-                                                 double* __restrict cos) {
+FUZZYGAIT_ALWAYS_INLINE void sin_cos_lanes(const double* FUZZYGAIT_RESTRICT x,
+                                           double* FUZZYGAIT_RESTRICT sin,
+                                           double* FUZZYGAIT_RESTRICT cos) {
+  using namespace sin_cos_constants;
   bool in_range = true;
   for (std::size_t i = 0; i < N; ++i)
     in_range = in_range && !(std::abs(x[i]) >= kSinCosExactBelow);  // NaN propagates below
-  constexpr double two_over_pi = 6.36619772367581382433e-01;
-  constexpr double pi_over_2_high = 1.57079632673412561417e+00;  // first 33 bits
-  constexpr double pi_over_2_low = 6.07710050650619224932e-11;   // pi/2 - pi_over_2_high
-  constexpr double round_shift = 6755399441055744.0;             // 1.5 * 2^52
   for (std::size_t i = 0; i < N; ++i) {
     // Nearest quadrant count k, by rounding in the shift; its low bits are the quadrant.
-    const double shifted = x[i] * two_over_pi + round_shift;
-    const double k = shifted - round_shift;
+    const double shifted = x[i] * kTwoOverPi + kRoundShift;
+    const double k = shifted - kRoundShift;
     const std::uint64_t quadrant = std::bit_cast<std::uint64_t>(shifted);
-    const double r = (x[i] - k * pi_over_2_high) - k * pi_over_2_low;  // in [-pi/4, pi/4]
+    const double r = (x[i] - k * kPiOver2High) - k * kPiOver2Low;  // in [-pi/4, pi/4]
     const double z = r * r;
-    const double s =
-        r +
-        r * z *
-            (-1.66666666666666324348e-01 +
-             z * (8.33333333332248946124e-03 +
-                  z * (-1.98412698298579493134e-04 +
-                       z * (2.75573137070700676789e-06 +
-                            z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)))));
+    const double s = r + r * z * (kS1 + z * (kS2 + z * (kS3 + z * (kS4 + z * (kS5 + z * kS6)))));
     const double half_z = 0.5 * z;
     const double w = 1.0 - half_z;
-    const double c =
-        w + (((1.0 - w) - half_z) + z * z *
-                                        (4.16666666666666019037e-02 +
-                                         z * (-1.38888888888741095749e-03 +
-                                              z * (2.48015872894767294178e-05 +
-                                                   z * (-2.75573143513906633035e-07 +
-                                                        z * (2.08757232129817482790e-09 +
-                                                             z * -1.13596475577881948265e-11))))));
+    const double c = w + (((1.0 - w) - half_z) +
+                          z * z * (kC1 + z * (kC2 + z * (kC3 + z * (kC4 + z * (kC5 + z * kC6))))));
     // Quadrant q: (sin, cos) = (s, c), (c, -s), (-s, -c), (-c, s), by bit selects and sign flips.
     const std::uint64_t odd = std::uint64_t{0} - (quadrant & 1u);
     const std::uint64_t s_bits = std::bit_cast<std::uint64_t>(s);
@@ -73,8 +57,8 @@ template <std::size_t N>
     const std::uint64_t sin_bits = ((s_bits & ~odd) | (c_bits & odd)) ^ ((quadrant & 2u) << 62);
     const std::uint64_t cos_bits =
         ((c_bits & ~odd) | (s_bits & odd)) ^ (((quadrant + 1u) & 2u) << 62);
-    // Below 2^-27, sin x is x to the last bit; taking x itself also keeps the sign of -0.
-    sin[i] = std::abs(x[i]) < 0x1p-27 ? x[i] : std::bit_cast<double>(sin_bits);
+    // Taking x itself below kSineIsArgumentBelow also keeps the sign of -0.
+    sin[i] = std::abs(x[i]) < kSineIsArgumentBelow ? x[i] : std::bit_cast<double>(sin_bits);
     cos[i] = std::bit_cast<double>(cos_bits);
   }
   if (in_range) return;
@@ -87,13 +71,12 @@ template <std::size_t N>
 }
 
 template <std::size_t N>
-[[gnu::always_inline]] inline void sin_cos(const double (&x)[N], double (&sin)[N],
-                                           double (&cos)[N]) {
+FUZZYGAIT_ALWAYS_INLINE void sin_cos(const double (&x)[N], double (&sin)[N], double (&cos)[N]) {
   sin_cos_lanes<N>(x, sin, cos);
 }
 
-// sin and cos of x[i] for i < n, lane for lane the bits of sin_cos above, in the widest vectors
-// the machine has (AVX-512, AVX2 or SSE2, chosen when the library loads): a crowd's legs at once.
+// sin and cos of x[i] for i < n, lane for lane the bits of sin_cos above: a crowd's legs at once,
+// in AVX2 vectors where simd::has_avx2(), else in the baseline's (SSE2 on x86-64).
 void sin_cos(const double* x, double* sin, double* cos, std::size_t n);
 
 inline SinCos sin_cos(double x) {

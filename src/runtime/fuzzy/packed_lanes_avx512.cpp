@@ -1,0 +1,15 @@
+// The packed controllers' batch kernel for AVX-512F: compiled for it (see
+// src/runtime/CMakeLists.txt) and run only where simd::has_avx512(). Includes nothing but
+// packed_lanes.hpp (lanes.hpp and the standard library), so that no inline function compiled here
+// is shared with baseline code.
+#define FUZZYGAIT_SIMD_AVX512_TU 1
+#include "runtime/fuzzy/packed_lanes.hpp"
+
+namespace fuzzygait::fuzzy::detail {
+
+void evaluate_packed_avx512(const PackedView& p, const double* x0, const double* x1, double* out,
+                            std::size_t n) {
+  evaluate_packed_lanes<simd::avx512::Double8>(p, x0, x1, out, n);
+}
+
+}  // namespace fuzzygait::fuzzy::detail

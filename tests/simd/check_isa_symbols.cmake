@@ -1,0 +1,41 @@
+# Fails when an object compiled for AVX2 or AVX-512F (the runtime's *_avx2 and *_avx512 translation
+# units) defines an inline function (a weak symbol) that is not an instantiation over its own lane
+# body: the linker could pick that copy for baseline code, which would then crash a machine without
+# the instruction set (see src/runtime/simd/lanes.hpp).
+#   cmake -DNM=<nm> -DOBJECTS=<object;...> -P check_isa_symbols.cmake
+if(NOT NM)
+  message("ISA symbol check skipped: no nm")
+  return()
+endif()
+set(checked 0)
+foreach(object IN LISTS OBJECTS)
+  get_filename_component(name ${object} NAME)
+  if(name MATCHES "_avx512\\.")
+    set(body "avx512::")
+  elseif(name MATCHES "_avx2\\.")
+    set(body "avx2::")
+  else()
+    continue()
+  endif()
+  execute_process(COMMAND ${NM} -C --defined-only ${object} OUTPUT_VARIABLE symbols
+                  RESULT_VARIABLE result)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "${NM} failed on ${object}")
+  endif()
+  string(REPLACE "\n" ";" lines "${symbols}")
+  foreach(line IN LISTS lines)
+    # nm: address, type, name; W, V and u are weak (inline functions, template instances).
+    if(line MATCHES "^[0-9a-fA-F]* [WVu] (.*)$")
+      set(symbol "${CMAKE_MATCH_1}")
+      string(FIND "${symbol}" "${body}" at)
+      if(at EQUAL -1)
+        message(FATAL_ERROR "${name} defines the shared inline function ${symbol}")
+      endif()
+    endif()
+  endforeach()
+  math(EXPR checked "${checked} + 1")
+endforeach()
+if(checked EQUAL 0)
+  message(FATAL_ERROR "no AVX2 or AVX-512 object among ${OBJECTS}")
+endif()
+message("${checked} AVX2/AVX-512 objects define no shared inline function")
