@@ -258,17 +258,23 @@ TEST(Walker, FastPathWalksAsTheGeneralEvaluator) {
       {{-10.0, 0.0}, {2.0, 0.0}, {4.0, 0.2}, {6.0, 0.2}, {6.001, 0.1}, {20.0, 0.1}});
   for (const std::string& name : gait::ControllerSet::builtin_names()) {
     const gait::ControllerSet set = gait::ControllerSet::builtin(name);
+    // Every controller, the slots' and the terrain words' (the ramp and the kerb fire them).
+    std::vector<const gait::Controller*> controllers;
+    for (const gait::Controller& c : set.controllers)
+      controllers.push_back(&c);
+    for (const gait::Controller& c : set.terrain_controllers)
+      controllers.push_back(&c);
     std::vector<fuzzy::Evaluator> evaluators;
     std::vector<fuzzy::Workspace> workspaces;
-    for (const gait::Controller& c : set.controllers) {
-      evaluators.emplace_back(c.engine());
+    for (const gait::Controller* c : controllers) {
+      evaluators.emplace_back(c->engine());
       workspaces.push_back(evaluators.back().make_workspace());
     }
     long calls = 0;
     gait::detail::ControllerBackend general;
     general.evaluate = [&](int slot, const gait::MetricValues& metrics) {
       const auto s = static_cast<std::size_t>(slot);
-      const gait::Controller& c = set.controllers[s];
+      const gait::Controller& c = *controllers[s];
       double in[2] = {};
       for (std::size_t i = 0; i < c.input_count(); ++i)
         in[i] = metrics[static_cast<std::size_t>(c.input(i))];

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -146,6 +147,10 @@ struct ControllerSet {
   // controller_count() order (slots', then terrain's).
   double evaluate(int slot, const MetricValues& metrics,
                   std::vector<fuzzy::Workspace>& workspaces) const;
+  // The same with each controller's command from `controller(index)`, index in controller_count()
+  // order: another evaluator of the same controllers (a reference implementation to compare with).
+  double evaluate(int slot, const MetricValues& metrics,
+                  const std::function<double(std::size_t controller)>& controller) const;
   // Whether for these metrics every slot of `phase` commands with its own controller alone (no
   // terrain word with a file for one of them fires): then evaluate() is its controller's.
   bool own_controllers_at(LegPhase phase, const MetricValues& metrics) const;

@@ -59,6 +59,7 @@ struct LegState {
   double target_x = 0.0;       // swing: where the heel should land
   double swing_start = 0.0;    // swing: when the foot left the ground (s)
   double strike_x = 0.0;       // stance: where the heel landed
+  double strike_time = 0.0;    // stance: when the foot landed (s)
   double delta = 0.0;          // the leg's last progress metric
   double step_from_x = 0.0;    // where the heel stood before this leg's current or last step
   std::size_t target_run = 0;  // swing: the run of the ground (a tread) the foot aims at

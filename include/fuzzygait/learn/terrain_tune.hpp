@@ -118,7 +118,9 @@ double terrain_cost(const gait::ControllerSet& set, const TerrainTuneOptions& op
                     std::string* report = nullptr);
 
 struct TerrainTuneResult {
-  gait::ControllerSet set;  // the best found, its values rounded to `digits`
+  // The best found, its values rounded to `digits` significant digits (more where that loses much
+  // of the cost found); the start when nothing better was found.
+  gait::ControllerSet set;
   double cost = 0.0;        // terrain_cost of `set`
   double start_cost = 0.0;  // of the set tuning began from
   int evaluations = 0;

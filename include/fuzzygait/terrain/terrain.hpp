@@ -2,6 +2,7 @@
 // and stairs are all polylines; the walker asks for height, slope and where a foot may stand.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -113,6 +114,10 @@ class Terrain {
   const std::vector<Run>& runs() const { return runs_; }
   // Index of the run holding x; x on a riser belongs to the run behind it.
   std::size_t run_at(double x) const;
+  // The x nearest x on run r (x itself when the run holds it).
+  double point_on_run(double x, std::size_t r) const {
+    return std::clamp(x, runs_[r].begin, runs_[r].end);
+  }
   // The pitch of the ground a foot stands on at x (radians, uphill forward +): on a tread (a run
   // shorter than kLongestTread between risers) the rise of its risers over its length, as a
   // stair's pitch line; elsewhere the slope.

@@ -143,10 +143,14 @@ double condition_cost(const gait::ControllerSet& set, const TerrainCondition& c,
     const eval::Motion motion = eval::record(walker, c.seconds, o.fps);
     const eval::TerrainReport r = eval::evaluate_terrain(motion, ground);
     if (r.nan_frames > 0) return wt.nan_walk;
-    // How far the walk got: its last foothold's height against the ground's end.
-    const double total = ground.points().back().y - ground.height(0.0);
+    // How far the walk got, on ground that ends level (stairs and their landing): its last
+    // foothold's height against the landing's. (A ramp goes on for ever.)
+    const std::vector<terrain::Point>& points = ground.points();
+    const bool ends = points[points.size() - 2].y == points.back().y;
+    const double total = ends ? points.back().y - ground.height(0.0) : 0.0;
     const double walked = r.steps.empty() ? 0.0 : r.steps.back().height - ground.height(0.0);
-    const double missing = std::max(0.0, std::abs(total) - (total >= 0.0 ? walked : -walked));
+    const double missing =
+        ends ? std::max(0.0, std::abs(total) - (total >= 0.0 ? walked : -walked)) : 0.0;
     cost += wt.missing_height * missing;
     for (const eval::PointContact& p : r.points) {
       cost += wt.contact * (std::max(0.0, 1000.0 * p.max_slip - 1.0) +
@@ -348,8 +352,18 @@ TerrainTuneResult tune_terrain(const gait::ControllerSet& start,
       minimize([&](const std::vector<double>& x) { return terrain_cost(parameters.apply(x), o); },
                parameters.start(), cma);
   result.evaluations = found.evaluations;
-  result.set = parameters.apply(found.best, o.digits);
-  result.cost = terrain_cost(result.set, o);
+  // Rounded for people, with more digits where rounding would lose much of what was found (a walk
+  // on stairs can hinge on a value's third digit), and never worse than the start.
+  const double found_cost = terrain_cost(parameters.apply(found.best), o);
+  for (int digits = o.digits; digits <= 8; ++digits) {
+    result.set = parameters.apply(found.best, digits);
+    result.cost = terrain_cost(result.set, o);
+    if (result.cost <= 1.05 * found_cost + 1.0) break;
+  }
+  if (!(result.cost < result.start_cost)) {
+    result.set = start;
+    result.cost = result.start_cost;
+  }
   return result;
 }
 

@@ -235,6 +235,21 @@ double ControllerSet::evaluate(int slot, const MetricValues& metrics,
   return sum / weights;
 }
 
+double ControllerSet::evaluate(int slot, const MetricValues& metrics,
+                               const std::function<double(std::size_t)>& controller) const {
+  const auto s = static_cast<std::size_t>(slot);
+  double sum = 0.0;
+  double weights = 0.0;
+  const bool words =
+      fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double degree) {
+        const int v = g.of_slot[s][word];
+        sum += degree * controller(v < 0 ? s : controllers.size() + static_cast<std::size_t>(v));
+        weights += degree;
+      });
+  if (!words || !(weights > 0.0)) return controller(s);
+  return sum / weights;
+}
+
 bool ControllerSet::own_controllers_at(LegPhase phase, const MetricValues& metrics) const {
   bool own = true;
   fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double) {

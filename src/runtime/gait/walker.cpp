@@ -45,6 +45,9 @@ constexpr double kSwingClearance = 0.01;
 // the shipped sets' walks peak at 9, 20, 8 and 27 over the step/stature grid (the toes are turned
 // by the ground).
 constexpr rig::LegAngles kMaxJointSpeed{20.0, 20.0, 20.0, 40.0};
+// Longest double support lasts before the newly planted leg takes the weight, s (walks hand over
+// in 0.1 to 0.2).
+constexpr double kLongestDoubleSupport = 0.4;
 // Longest a swing lasts before the foot is put down anyway, s (walks swing for 0.3 to 0.5).
 constexpr double kLongestSwing = 1.0;
 // Fastest the clearance reflex folds the knee, rad/s.
@@ -449,6 +452,7 @@ void Walker::warm_up(double seconds) {
     l.strike_x -= shift;
     l.step_from_x -= shift;
     l.swing_start -= state_.time;
+    l.strike_time -= state_.time;
   }
   state_.time = 0.0;
 }
@@ -458,6 +462,7 @@ void Walker::strike(int leg, Phase phase, Point contact) {
   const double tilt = state_.pelvis_tilt;
   l.phase = phase;
   l.anchor = contact;
+  l.strike_time = state_.time;
   l.strike_x = phase == Phase::Ball ? contact.x - segments_.heel - segments_.ball : contact.x;
   l.sweep_start = thigh_of(tilt, l.angles);
   l.sweep_end = stance_target();
@@ -727,8 +732,8 @@ FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, co
     // the set's ascent words (up a stair), where the target lies well within the leg's reach, where
     // the leg with its knee bent puts the heel on it: the paper's end position of the knee.
     // (A heel reaching over a tread's edge aims at the tread's height, not at the ground below.)
-    const terrain::Terrain::Run& run = w.terrain_->runs()[l.target_run];
-    const Point target{l.target_x, w.terrain_->height(std::clamp(l.target_x, run.begin, run.end))};
+    const Point target{l.target_x,
+                       w.terrain_->height(w.terrain_->point_on_run(l.target_x, l.target_run))};
     end = inclination(p.hip, target) + w.heel_offset_;
     if (landing_knee > 0.0) {
       // The thigh's angle to the hip-heel line of a leg landing with its knee bent so.
@@ -767,8 +772,11 @@ void WalkerStages::command(Walker& w, StepData& d) {
     FUZZYGAIT_UNROLL(4)
     for (std::size_t joint = 0; joint < 4; ++joint) {
       const auto s = static_cast<std::size_t>(slot(phase, static_cast<Joint>(joint)));
-      d.commands[leg][joint] = backend ? backend->evaluate(static_cast<int>(s), m)
-                                       : set.controllers[s].evaluate(m, w.workspaces_[s]);
+      d.commands[leg][joint] =
+          backend ? set.evaluate(
+                        static_cast<int>(s), m,
+                        [&](std::size_t c) { return backend->evaluate(static_cast<int>(c), m); })
+                  : set.controllers[s].evaluate(m, w.workspaces_[s]);
     }
   }
   if (!backend && set.has_terrain_words()) command_on_terrain(w, d);
@@ -859,9 +867,12 @@ std::array<WalkerStages::LegGround, 2> WalkerStages::leg_ground(const Walker& w)
     const LegState& l = w.state_.legs[k];
     const LegState& other = w.state_.legs[1 - k];
     const bool swinging = l.phase == Phase::Swing;
+    // (A swinging foot's target by its run: a heel reaching over a short tread's edge has its x
+    // over the ground below.)
+    const LegState& to = swinging ? l : other;
     const double a_x = swinging ? l.step_from_x : l.anchor.x;
     const double b_x =
-        swinging ? l.target_x : (other.phase == Phase::Swing ? other.target_x : other.anchor.x);
+        to.phase == Phase::Swing ? ground.point_on_run(to.target_x, to.target_run) : to.anchor.x;
     const double a = ground.pitch(a_x);
     const double b = ground.pitch(b_x);
     const double pitch =
@@ -1053,7 +1064,12 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
       w.settle_foot(leg, l.angles);
       reached = w.close_chain(leg);
     }
-    if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball) w.hand_over(w.state_.lead);
+    // A heel that stays down while its forefoot does not come down (double support lasting on,
+    // the body held by the other leg at the top of a stair) takes the weight anyway.
+    const bool lasting = w.state_.time - l.strike_time > kLongestDoubleSupport;
+    if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball || lasting) {
+      w.hand_over(w.state_.lead);
+    }
     break;
   }
   for (int leg = 0; leg < 2; ++leg) {

@@ -12,11 +12,13 @@
 
 namespace fuzzygait::gait::detail {
 
-// Another evaluator of a set's controllers, called instead of its engines, eight times a time
-// step: given a slot (see slot()) and the leg's metrics, it returns what that controller would. It
-// should not allocate. The caller keeps it alive while walkers use it.
+// Another evaluator of a set's controllers, called instead of its engines, eight or more times a
+// time step: given a controller (ControllerSet::controller_count() order: the slots' first, see
+// slot(), then the terrain files') and the leg's metrics, it returns what that controller would.
+// The terrain words are blended as without it. It should not allocate. The caller keeps it alive
+// while walkers use it.
 struct ControllerBackend {
-  std::function<double(int slot, const MetricValues& metrics)> evaluate;
+  std::function<double(int controller, const MetricValues& metrics)> evaluate;
 };
 
 // What a time step hands from stage to stage.
