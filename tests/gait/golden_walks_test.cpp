@@ -111,7 +111,7 @@ const std::vector<GoldenWalk>& golden_walks() {
       {"cautious 1.90 m 0.80 m", "cautious", 1.90, 0.80, 0, -1, 0xe673d6e3d8c40ab},
       {"default on a 5 deg ramp", "default", 1.75, 0.70, 1, -1, 0xeae710b2a8f267a7},
       {"default over a kerb", "default", 1.75, 0.70, 2, -1, 0x5bde9161943c07d1},
-      {"heavy over a kerb", "heavy", 1.75, 0.70, 2, -1, 0xb4dd3322264cbaa1},
+      {"heavy over a kerb", "heavy", 1.75, 0.70, 2, -1, 0xa0073c3580e35f54},
       {"default random start 3", "default", 1.75, 0.70, 0, 3, 0xc635c4210f392e73},
       {"default random start 17", "default", 1.60, 0.60, 0, 17, 0xdf3b0449fb009a77},
       {"energetic random start 5", "energetic", 1.75, 0.70, 0, 5, 0x230a1eec0d4ddba5},

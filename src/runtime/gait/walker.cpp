@@ -1065,8 +1065,10 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
       reached = w.close_chain(leg);
     }
     // A heel that stays down while its forefoot does not come down (double support lasting on,
-    // the body held by the other leg at the top of a stair) takes the weight anyway.
-    const bool lasting = w.state_.time - l.strike_time > kLongestDoubleSupport;
+    // the body held by the other leg a stair below) takes the weight anyway.
+    const LegState& carrying = w.state_.legs[static_cast<std::size_t>(w.state_.lead)];
+    const bool lasting = w.state_.time - l.strike_time > kLongestDoubleSupport &&
+                         w.terrain_->run_at(l.anchor.x) != w.terrain_->run_at(carrying.anchor.x);
     if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball || lasting) {
       w.hand_over(w.state_.lead);
     }
