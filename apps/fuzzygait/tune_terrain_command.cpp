@@ -61,6 +61,7 @@ void add_tune_terrain_command(CLI::App& app) {
     std::string output;
     std::string preset;
     std::vector<std::string> words;
+    std::string words_from;
   };
   auto o = std::make_shared<Options>();
   learn::TerrainTuneOptions& t = o->tune;
@@ -75,6 +76,9 @@ void add_tune_terrain_command(CLI::App& app) {
       ->required();
   tune->add_option("--words", o->words, "The words to tune, e.g. stairs:up (repeatable)")
       ->required();
+  tune->add_option("--words-from", o->words_from,
+                   "Start the terrain words (all of them: words, files, landing knees) from this "
+                   "built-in set or folder, e.g. a style from the default's");
   tune->add_option("--generations", t.generations, "CMA-ES generations")
       ->check(CLI::PositiveNumber);
   tune->add_option("--threads", t.threads, "Walks evaluated in parallel")
@@ -84,9 +88,15 @@ void add_tune_terrain_command(CLI::App& app) {
   tune->add_option("--seed", t.seed, "Random seed (the result is deterministic for a seed)");
   tune->add_option("--sigma", t.sigma, "Initial CMA-ES step (scaled units)");
   tune->callback([o]() {
-    const gait::ControllerSet start = o->controllers.empty()
-                                          ? gait::ControllerSet::builtin(o->style)
-                                          : gait::ControllerSet::load(o->controllers);
+    gait::ControllerSet start = o->controllers.empty() ? gait::ControllerSet::builtin(o->style)
+                                                       : gait::ControllerSet::load(o->controllers);
+    if (!o->words_from.empty()) {
+      const bool folder = o->words_from.find('/') != std::string::npos;
+      const gait::ControllerSet from = folder ? gait::ControllerSet::load(o->words_from)
+                                              : gait::ControllerSet::builtin(o->words_from);
+      start.ground = from.ground;
+      start.terrain_controllers = from.terrain_controllers;
+    }
     learn::TerrainTuneOptions& options = o->tune;
     options.conditions = preset_conditions(o->preset);
     options.words.clear();

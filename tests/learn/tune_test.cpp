@@ -277,7 +277,7 @@ const std::vector<CostCase>& cost_cases() {
         {"default set, main walk", test::default_set(), main_walk, 0x1.f09dfb21fe122p+5},
         {"default set, grid", test::default_set(), grid_options(), 0x1.0cdc0f5f434f7p+7},
         {"slower set, strained grid", scaled_default(0.7), strained(grid_options()),
-         0x1.246be9e2b150ep+13},
+         0x1.dcbd445ffe114p+12},
         {"faster set, strained grid", scaled_default(1.5), strained(grid_options()),
          0x1.0c642c68aa446p+13},
         {"cautious set, grid", gait::ControllerSet::builtin("cautious"), grid_options(),

@@ -119,6 +119,7 @@ struct TerrainGroup {
 // The worst of one leg point against the ground over the walk, both legs.
 struct PointContact {
   double max_slip = 0.0;          // m a frame along the surface, while within 2 mm of it
+  double slip_time = 0.0;         // s, where the largest slip was
   double max_penetration = 0.0;   // m, the deepest below the surface (distance to it)
   double penetration_time = 0.0;  // s, where the deepest was
 };

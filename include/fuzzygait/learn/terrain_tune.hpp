@@ -87,6 +87,8 @@ struct TerrainWeights {
   double edge_across = 2.0;        // a millimetre of a foot's sole across an edge at a strike
   double nan_walk = 1e5;           // a walk with a NaN, or that could not be walked
   double pop = 1.0;                // a millimetre of the pelvis's largest move a frame past 80 mm
+  double stall = 1000.0;           // a metre the pelvis fell short, in any 2 s after the first,
+                                   // of walking 30 steps a minute at the condition's step
 };
 
 // Which words to tune: a ground and a word of its incline_deg.

@@ -499,7 +499,10 @@ TerrainReport evaluate_terrain(const Motion& m, const Terrain& terrain) {
         const double angle = run_surface(terrain, terrain.run_at(current[p].x), current[p].x).first;
         const double along = (current[p].x - previous[p].x) * std::cos(angle) +
                              (current[p].y - previous[p].y) * std::sin(angle);
-        c.max_slip = std::max(c.max_slip, std::abs(along));
+        if (std::abs(along) > c.max_slip) {
+          c.max_slip = std::abs(along);
+          c.slip_time = m.frames[i].time;
+        }
       }
     }
   }
@@ -653,14 +656,18 @@ std::string to_text(const TerrainReport& r) {
     out += line;
   }
 
-  out += "leg points against the ground     max slip (mm a frame)   max penetration (mm)\n";
+  out += "leg points against the ground    max slip (mm a frame)     max penetration (mm)\n";
+  // A figure with where it was, when it shows as 0.01 or more.
+  auto at = [&figure](double value, double time) {
+    std::string text = figure(value, 1e3, 2);
+    if (value >= 0.000005) text += " (" + figure(time, 1.0, 3) + " s)";
+    return text;
+  };
   for (std::size_t p = 0; p < kContactPoints.size(); ++p) {
     const PointContact& c = r.points[p];
-    std::snprintf(line, sizeof line, "  %-31s %21.2f %22.2f%s\n", kContactPoints[p],
-                  c.max_slip * 1e3, c.max_penetration * 1e3,
-                  c.max_penetration >= 0.000005  // shows as 0.01 mm or more
-                      ? (" (at " + figure(c.penetration_time, 1.0, 3) + " s)").c_str()
-                      : "");
+    std::snprintf(line, sizeof line, "  %-20s %26s %26s\n", kContactPoints[p],
+                  at(c.max_slip, c.slip_time).c_str(),
+                  at(c.max_penetration, c.penetration_time).c_str());
     out += line;
   }
   auto note = [&](const char* label, const std::string& value) {
@@ -692,7 +699,8 @@ std::string to_json(const TerrainReport& r) {
   for (std::size_t p = 0; p < kContactPoints.size(); ++p) {
     j["points"][kContactPoints[p]] = {{"max_slip_m_per_frame", r.points[p].max_slip},
                                       {"max_penetration_m", r.points[p].max_penetration},
-                                      {"penetration_time_s", r.points[p].penetration_time}};
+                                      {"penetration_time_s", r.points[p].penetration_time},
+                                      {"slip_time_s", r.points[p].slip_time}};
   }
   j["min_swing_clearance_m"] = number(r.min_swing_clearance);
   j["min_swing_clearance_time_s"] = number(r.min_swing_clearance_time);

@@ -171,6 +171,16 @@ double condition_cost(const gait::ControllerSet& set, const TerrainCondition& c,
       pop = std::max(pop, std::hypot(b.x - a.x, b.y - a.y));
     }
     cost += wt.pop * std::max(0.0, 1000.0 * pop - 80.0);
+    // A walk that stops (a foot waiting for ground it never gets) is priced whatever the bounds
+    // say of the steps it made before.
+    const std::size_t window = static_cast<std::size_t>(std::lround(2.0 * o.fps));
+    const double least = 2.0 * c.step_length * 30.0 / 60.0;
+    double stalled = 0.0;
+    for (std::size_t i = window; i + window < motion.frames.size(); i += window) {
+      const double moved = motion.frames[i + window].pose.pelvis.x - motion.frames[i].pose.pelvis.x;
+      stalled += std::max(0.0, least - moved);
+    }
+    cost += wt.stall * stalled;
     const TerrainBounds& b = c.bounds;
     const LevelReference level = c.level ? *c.level : level_reference(set, c, o.fps);
     const bool ramp = b.footing == eval::Footing::RampUp || b.footing == eval::Footing::RampDown;
@@ -214,11 +224,12 @@ double condition_cost(const gait::ControllerSet& set, const TerrainCondition& c,
     if (!measured) cost += wt.missing_height;
     if (report) {
       char line[300];
-      std::snprintf(line, sizeof line,
-                    "%s at %.2f m, %.2f m steps: cost %.1f (missing %.2f m, pop %.0f mm, foot "
-                    "across an edge %.1f mm)\n",
-                    c.terrain.c_str(), c.stature, c.step_length, cost, missing, 1000.0 * pop,
-                    across);
+      std::snprintf(
+          line, sizeof line,
+          "%s at %.2f m, %.2f m steps: cost %.1f (missing %.2f m, stalled %.2f m, pop %.0f "
+          "mm, foot across an edge %.1f mm)\n",
+          c.terrain.c_str(), c.stature, c.step_length, cost, missing, stalled, 1000.0 * pop,
+          across);
       *report += line;
     }
   } catch (const std::exception& e) {

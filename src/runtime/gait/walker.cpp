@@ -62,6 +62,8 @@ constexpr double kShortestTimeStep = 1e-5;
 // How far an edge may reach up to a landing foot's sole (m): a heel reaching over a tread shorter
 // than the foot lies on its nosing.
 constexpr double kEdgeUnderSole = 0.002;
+// rad: how far a straight knee's chain may ask it to bend backwards and still be closed straight.
+constexpr double kStraightKneeSlack = 0.002;
 // How far a foot's heel and toes keep from a tread's edges (m).
 constexpr double kFootholdMargin = 0.005;
 // A swinging leg aims to land with its knee bent where its target lies more than this (m) within
@@ -578,19 +580,41 @@ bool Walker::close_chain(int leg) {
   const double d = std::max(distance, std::abs(s.thigh - lower) + 1e-9);
   const double cos_hip =
       std::clamp((s.thigh * s.thigh + d * d - lower * lower) / (2.0 * s.thigh * d), -1.0, 1.0);
-  const double thigh = inclination(hip, target) + arccos(cos_hip);
-  const rig::detail::SinCos t = sin_cos(thigh);
-  const Point knee{hip.x + s.thigh * t.sin, hip.y - s.thigh * t.cos};
-  // The knee-to-contact vector is (we, wn) in the shank's frame, rotated by the shank's
-  // inclination.
-  double shank_inclination = arctan2(target.y - knee.y, target.x - knee.x) - arctan2(wn, we);
-  if (shank_inclination > std::numbers::pi) {
-    shank_inclination -= 2.0 * std::numbers::pi;
-  } else if (shank_inclination < -std::numbers::pi) {
-    shank_inclination += 2.0 * std::numbers::pi;
+  // Two chains reach the target, mirrored about the hip-target line; the knee bends forward in
+  // both when the lower link leans forward of the shank (a near-straight knee on the ball). Keep
+  // the one nearest the leg's thigh, so a foot that touches down does not jump to the other.
+  const double current = thigh_of(tilt, l.angles);
+  const double towards = inclination(hip, target);
+  const double opening = arccos(cos_hip);
+  auto shank_of_chain = [&](double thigh) {
+    const rig::detail::SinCos t = sin_cos(thigh);
+    const Point knee{hip.x + s.thigh * t.sin, hip.y - s.thigh * t.cos};
+    // The knee-to-contact vector is (we, wn) in the shank's frame, rotated by the shank's
+    // inclination.
+    double inclined = arctan2(target.y - knee.y, target.x - knee.x) - arctan2(wn, we);
+    if (inclined > std::numbers::pi) {
+      inclined -= 2.0 * std::numbers::pi;
+    } else if (inclined < -std::numbers::pi) {
+      inclined += 2.0 * std::numbers::pi;
+    }
+    return inclined;
+  };
+  double thigh = towards + opening;
+  double shank_inclination = shank_of_chain(thigh);
+  const double mirrored = towards - opening;
+  bool kept_mirrored = false;
+  if (std::abs(mirrored - current) < std::abs(thigh - current)) {
+    // A foot that touched down a hair below the ground may ask a straight knee to bend a little
+    // backwards: it stays straight (the contact moves by less than a millimetre).
+    const double mirrored_shank = shank_of_chain(mirrored);
+    if (mirrored - mirrored_shank >= -kStraightKneeSlack) {
+      thigh = mirrored;
+      shank_inclination = mirrored_shank;
+      kept_mirrored = true;
+    }
   }
   // The knee cannot bend backwards: a chain that needs it is out of reach.
-  if (thigh - shank_inclination < -1e-9) return false;
+  if (thigh - shank_inclination < -1e-9 && !kept_mirrored) return false;
   l.angles.hip = thigh + tilt;
   l.angles.knee = std::max(0.0, thigh - shank_inclination);
   if (l.phase == Phase::Flat) {
@@ -1065,10 +1089,12 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
       reached = w.close_chain(leg);
     }
     // A heel that stays down while its forefoot does not come down (double support lasting on,
-    // the body held by the other leg a stair below) takes the weight anyway.
+    // the body held by the other leg a stair below, or the ground falling away down a ramp)
+    // takes the weight anyway. (On level ground the forefoot always comes down.)
     const LegState& carrying = w.state_.legs[static_cast<std::size_t>(w.state_.lead)];
     const bool lasting = w.state_.time - l.strike_time > kLongestDoubleSupport &&
-                         w.terrain_->run_at(l.anchor.x) != w.terrain_->run_at(carrying.anchor.x);
+                         (w.terrain_->run_at(l.anchor.x) != w.terrain_->run_at(carrying.anchor.x) ||
+                          w.terrain_->slope(l.anchor.x) != 0.0);
     if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball || lasting) {
       w.hand_over(w.state_.lead);
     }
