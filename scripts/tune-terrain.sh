@@ -14,7 +14,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 for style in ${styles[@]}; do
   echo "== $style"
-  "$fuzzygait" tune-terrain --style "$style" --words-from default --preset stairs-up \
+  "$fuzzygait" tune-terrain --style "$style" --words-from controllers/default --preset stairs-up \
     --words stairs:up --generations 120 --sigma 0.15 --seed 31 -o "$work/$style-1"
   "$fuzzygait" tune-terrain --controllers "$work/$style-1" --preset stairs-down \
     --words stairs:down --generations 120 --sigma 0.15 --seed 32 -o "$work/$style-2"

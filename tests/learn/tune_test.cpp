@@ -281,7 +281,7 @@ const std::vector<CostCase>& cost_cases() {
         {"faster set, strained grid", scaled_default(1.5), strained(grid_options()),
          0x1.0c642c68aa446p+13},
         {"cautious set, grid", gait::ControllerSet::builtin("cautious"), grid_options(),
-         0x1.a51c496e38af3p+12},
+         0x1.a50ae592ad2e1p+12},
         {"wild set, main walk", scaled_default(10.0), wild, 0x1.99e0d890ff932p+14},
     };
   }();

@@ -77,6 +77,12 @@ struct TerrainCondition {
 LevelReference level_reference(const gait::ControllerSet& set, const TerrainCondition& condition,
                                double fps);
 
+// The step a condition walks: its own, or the set's shortest (1 % longer) where that is longer.
+double condition_step(const gait::ControllerSet& set, const TerrainCondition& condition);
+
+// The terrain words' broken promises (word_penalty() over the set's terrain controllers).
+double terrain_word_penalty(const gait::ControllerSet& set);
+
 // Every price of the cost, named, in its unit.
 struct TerrainWeights {
   double missing_height = 2000.0;  // a metre of the terrain's rise or drop not reached
@@ -87,6 +93,7 @@ struct TerrainWeights {
   double edge_across = 2.0;        // a millimetre of a foot's sole across an edge at a strike
   double nan_walk = 1e5;           // a walk with a NaN, or that could not be walked
   double pop = 1.0;                // a millimetre of the pelvis's largest move a frame past 80 mm
+  double words = 100.0;            // a unit of the terrain words' broken promises
   double stall = 1000.0;           // a metre the pelvis fell short, in any 2 s after the first,
                                    // of walking 30 steps a minute at the condition's step
 };

@@ -10,6 +10,7 @@
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/io/terrain_spec.hpp"
 #include "fuzzygait/learn/cmaes.hpp"
+#include "fuzzygait/learn/tune.hpp"
 #include "runtime/common/format.hpp"
 
 namespace fuzzygait::learn {
@@ -130,13 +131,25 @@ class WordParameters {
   std::vector<Value> values_;
 };
 
+}  // namespace
+
+// The condition's step, or the set's shortest where that is longer (a style that does not walk
+// the preset's step walks its own shortest, 1 % longer).
+double condition_step(const gait::ControllerSet& set, const TerrainCondition& c) {
+  const double shortest =
+      gait::Walker::min_step_length(set, rig::segments_from_stature(c.stature)) * 1.01;
+  return std::max(c.step_length, shortest);
+}
+
+namespace {
+
 double condition_cost(const gait::ControllerSet& set, const TerrainCondition& c,
                       const TerrainTuneOptions& o, std::string* report) {
   const TerrainWeights& wt = o.weights;
   const terrain::Terrain ground = io::terrain_from_spec(c.terrain);
   gait::WalkerOptions options;
   options.segments = rig::segments_from_stature(c.stature);
-  options.step_length = c.step_length;
+  options.step_length = condition_step(set, c);
   double cost = 0.0;
   try {
     gait::Walker walker(set, options, ground);
@@ -174,7 +187,7 @@ double condition_cost(const gait::ControllerSet& set, const TerrainCondition& c,
     // A walk that stops (a foot waiting for ground it never gets) is priced whatever the bounds
     // say of the steps it made before.
     const std::size_t window = static_cast<std::size_t>(std::lround(2.0 * o.fps));
-    const double least = 2.0 * c.step_length * 30.0 / 60.0;
+    const double least = 2.0 * options.step_length * 30.0 / 60.0;
     double stalled = 0.0;
     for (std::size_t i = window; i + window < motion.frames.size(); i += window) {
       const double moved = motion.frames[i + window].pose.pelvis.x - motion.frames[i].pose.pelvis.x;
@@ -204,8 +217,8 @@ double condition_cost(const gait::ControllerSet& set, const TerrainCondition& c,
       cost += wt.bound * outside(g.toe_down_vs_level, b.toe_down_vs_level);
       price(g.mid_stance_sole, b.mid_stance_sole);
       if (g.step_length.count > 0) {
-        cost += wt.bound *
-                outside(100.0 * (g.step_length.mean / c.step_length - 1.0), b.step_error_percent);
+        cost += wt.bound * outside(100.0 * (g.step_length.mean / options.step_length - 1.0),
+                                   b.step_error_percent);
       }
       if (ramp) {
         // Shifts from the level walk, per degree of slope.
@@ -228,7 +241,7 @@ double condition_cost(const gait::ControllerSet& set, const TerrainCondition& c,
           line, sizeof line,
           "%s at %.2f m, %.2f m steps: cost %.1f (missing %.2f m, stalled %.2f m, pop %.0f "
           "mm, foot across an edge %.1f mm)\n",
-          c.terrain.c_str(), c.stature, c.step_length, cost, missing, stalled, 1000.0 * pop,
+          c.terrain.c_str(), c.stature, options.step_length, cost, missing, stalled, 1000.0 * pop,
           across);
       *report += line;
     }
@@ -274,7 +287,7 @@ LevelReference level_reference(const gait::ControllerSet& set, const TerrainCond
   const terrain::Terrain flat = terrain::Terrain::flat();
   gait::WalkerOptions options;
   options.segments = rig::segments_from_stature(c.stature);
-  options.step_length = c.step_length;
+  options.step_length = condition_step(set, c);
   gait::Walker walker(set, options, flat);
   const eval::TerrainReport r = eval::evaluate_terrain(eval::record(walker, 8.0, fps), flat);
   LevelReference level;
@@ -330,9 +343,20 @@ void validate(const TerrainTuneOptions& o, const gait::ControllerSet& set) {
   within("sigma", o.sigma, 1e-9, 10.0);
 }
 
+double terrain_word_penalty(const gait::ControllerSet& set) {
+  // word_penalty() reads a set's controllers: a set holding the terrain words' in their place.
+  gait::ControllerSet words;
+  words.controllers = set.terrain_controllers;
+  return word_penalty(words);
+}
+
 double terrain_cost(const gait::ControllerSet& set, const TerrainTuneOptions& options,
                     std::string* report) {
-  double cost = 0.0;
+  const double words = terrain_word_penalty(set);
+  double cost = options.weights.words * words;
+  if (report && words > 0.0) {
+    *report += "terrain words' broken promises: " + common::number_text(words, 3) + "\n";
+  }
   for (const TerrainCondition& c : options.conditions)
     cost += condition_cost(set, c, options, report);
   return cost;

@@ -52,6 +52,12 @@ constexpr double kLongestDoubleSupport = 0.4;
 constexpr double kLongestSwing = 1.0;
 // Fastest the clearance reflex folds the knee, rad/s.
 constexpr double kReflexSpeed = 10.0;
+// rad: a knee this straight cannot lower its foot further.
+constexpr double kStraightKnee = 0.1;
+// m: a swing foot's toes this close behind an edge they are below lift the thigh, at most this
+// fast (rad/s).
+constexpr double kLiftReach = 0.05;
+constexpr double kLiftSpeed = 3.0;
 // Walker::kLongestAdvance, an hour, is longer than any frame, so that a nonsense dt (a timer gone
 // wrong) is refused rather than a program frozen for days or a count of sub-steps overflowing:
 // with the shortest time step it is 3.6e8 sub-steps, within an int.
@@ -62,6 +68,9 @@ constexpr double kShortestTimeStep = 1e-5;
 // How far an edge may reach up to a landing foot's sole (m): a heel reaching over a tread shorter
 // than the foot lies on its nosing.
 constexpr double kEdgeUnderSole = 0.002;
+// m: a step across a riser between runs that are not treads (a kerb) climbs or drops as a stair
+// of that rise with a tread this long would.
+constexpr double kKerbTread = 0.30;
 // rad: how far a straight knee's chain may ask it to bend backwards and still be closed straight.
 constexpr double kStraightKneeSlack = 0.002;
 // How far a foot's heel and toes keep from a tread's edges (m).
@@ -883,25 +892,61 @@ void WalkerStages::measure(Walker& w, StepData& d) {
 // footholds, and whether it is a stair's. A swinging leg: the steeper of where it left and where
 // it lands (it lifts the foot over the edges between). A planted leg: going up, its own
 // foothold's (it lifts the body onto it); going down, the lower of its own and the other foot's
-// next (it lowers the body to it).
+// next (it lowers the body to it). A step across a riser between runs that are not treads (a
+// kerb, a landing's edge) climbs or drops as a stair of that rise and a kKerbTread tread would.
 std::array<WalkerStages::LegGround, 2> WalkerStages::leg_ground(const Walker& w) {
   std::array<LegGround, 2> result{};
   const terrain::Terrain& ground = *w.terrain_;
+  // The pitch of a leg's step from from_x to its foothold (x on run), and whether it crosses a
+  // riser between runs that are not treads.
+  struct StepPitch {
+    double pitch;
+    bool kerb;
+  };
+  // (`base_x`: the ground the step rises from, the other foot's where it stands.)
+  auto step_pitch = [&ground](double from_x, double to_x, std::size_t run, double base_x) {
+    const double a = ground.pitch(from_x);
+    const double b = ground.pitch(to_x);
+    const double steeper = std::abs(a) > std::abs(b) ? a : b;
+    if (ground.run_at(from_x) == run || ground.on_tread(from_x) || ground.on_tread(to_x)) {
+      return StepPitch{steeper, false};
+    }
+    const double kerb = arctan2(ground.height(to_x) - ground.height(base_x), kKerbTread);
+    return std::abs(kerb) > std::abs(steeper) ? StepPitch{kerb, true} : StepPitch{steeper, false};
+  };
   for (std::size_t k = 0; k < 2; ++k) {
     const LegState& l = w.state_.legs[k];
     const LegState& other = w.state_.legs[1 - k];
-    const bool swinging = l.phase == Phase::Swing;
     // (A swinging foot's target by its run: a heel reaching over a short tread's edge has its x
     // over the ground below.)
-    const LegState& to = swinging ? l : other;
-    const double a_x = swinging ? l.step_from_x : l.anchor.x;
-    const double b_x =
-        to.phase == Phase::Swing ? ground.point_on_run(to.target_x, to.target_run) : to.anchor.x;
-    const double a = ground.pitch(a_x);
-    const double b = ground.pitch(b_x);
-    const double pitch =
-        swinging ? (std::abs(a) > std::abs(b) ? a : b) : std::max(a, 0.0) + std::min({a, b, 0.0});
-    result[k] = {rig::degrees(pitch), ground.on_tread(a_x) || ground.on_tread(b_x) ? 1.0 : 0.0};
+    auto foothold = [&ground](const LegState& leg) {
+      return leg.phase == Phase::Swing ? ground.point_on_run(leg.target_x, leg.target_run)
+                                       : leg.anchor.x;
+    };
+    auto run_of = [&ground](const LegState& leg) {
+      return leg.phase == Phase::Swing ? leg.target_run : ground.run_at(leg.anchor.x);
+    };
+    // A swinging foot steps up or down from the planted one; a planted foot stepped up or down
+    // from where it stood before.
+    const double base_x =
+        l.phase == Phase::Swing && other.phase != Phase::Swing ? other.anchor.x : l.step_from_x;
+    const StepPitch own = step_pitch(l.step_from_x, foothold(l), run_of(l), base_x);
+    double pitch = own.pitch;
+    bool stairs = own.kerb || ground.on_tread(l.step_from_x) || ground.on_tread(foothold(l));
+    if (l.phase != Phase::Swing) {
+      // Its own foothold's pitch, or the kerb it stepped onto.
+      const double here = own.kerb ? own.pitch : ground.pitch(l.anchor.x);
+      StepPitch next{ground.pitch(foothold(other)), false};
+      if (other.phase == Phase::Swing) {
+        const StepPitch step =
+            step_pitch(other.step_from_x, foothold(other), run_of(other), l.anchor.x);
+        if (step.kerb) next = step;
+      }
+      pitch = std::max(here, 0.0) + std::min({here, next.pitch, 0.0});
+      stairs =
+          own.kerb || next.kerb || ground.on_tread(l.anchor.x) || ground.on_tread(foothold(other));
+    }
+    result[k] = {rig::degrees(pitch), stairs ? 1.0 : 0.0};
   }
   return result;
 }
@@ -1031,6 +1076,29 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
       const bool over_target =
           t.run_at(p.ball.x) == l.target_run && !(ground.sole_corners >= kEdgeUnderSole) &&
           (t.run_at(p.heel.x) == l.target_run || t.run_at(l.target_x) != l.target_run);
+      // A foot held back by a rise it steps onto (a kerb, a stair's nosing), its heel behind the
+      // edge and its sole reaching it below its top, lifts: the thigh flexes, no faster than
+      // kLiftSpeed, as far as puts the sole kSwingClearance above the edge (folding the knee
+      // alone draws the foot back, never over the edge).
+      if (!over_target && l.target_run > t.run_at(p.heel.x)) {
+        const double edge_x = t.runs()[l.target_run].begin;
+        const double edge_y = t.height(edge_x) + kSwingClearance;
+        auto below = [&](double hip) {
+          rig::LegAngles a = l.angles;
+          a.hip = hip;
+          const LegPoints q = leg_points(w, leg, w.state_.pelvis, a);
+          return q.heel.x < edge_x && q.tip.x > edge_x - kLiftReach &&
+                 std::min({q.heel.y, q.ball.y, q.tip.y}) < edge_y;
+        };
+        if (below(l.angles.hip)) {
+          const double high = std::min(l.angles.hip + kLiftSpeed * h, w.limits_.maximum.hip);
+          l.angles.hip = below(high)
+                             ? high
+                             : bisect(high, l.angles.hip, [&](double hip) { return !below(hip); });
+          p = leg_points(w, leg, w.state_.pelvis, l.angles);
+          ground = ground_under(t, p);
+        }
+      }
       const bool arriving = (l.delta >= kLandingDelta && over_target) || w.state_.lead < 0 ||
                             w.state_.time - l.swing_start > kLongestSwing;
       const double knee_clearance = p.knee.y - w.terrain_->height(p.knee.x);
@@ -1052,8 +1120,19 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
           ground = ground_under(*w.terrain_, p);
         }
       }
-      const double heel_depth = ground.heel - p.heel.y;
-      const double ball_depth = ground.ball - p.ball.y;
+      double heel_depth = ground.heel - p.heel.y;
+      double ball_depth = ground.ball - p.ball.y;
+      // A swing that drags on over its foothold, the foot hanging above it from a straight leg
+      // (the body held up a hair too high), reaches down with the toes.
+      if (heel_depth < 0.0 && ball_depth < 0.0 && over_target &&
+          w.state_.time - l.swing_start > kLongestSwing && l.angles.knee < kStraightKnee &&
+          l.angles.ankle > w.limits_.minimum.ankle) {
+        l.angles.ankle = std::max(l.angles.ankle - kReflexSpeed * h, w.limits_.minimum.ankle);
+        p = leg_points(w, leg, w.state_.pelvis, l.angles);
+        ground = ground_under(t, p);
+        heel_depth = ground.heel - p.heel.y;
+        ball_depth = ground.ball - p.ball.y;
+      }
       if (heel_depth < 0.0 && ball_depth < 0.0) {
         if (w.state_.lead >= 0) {
           placed_tip_ground[static_cast<std::size_t>(leg)] = ground.tip;
@@ -1088,13 +1167,10 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
       w.settle_foot(leg, l.angles);
       reached = w.close_chain(leg);
     }
-    // A heel that stays down while its forefoot does not come down (double support lasting on,
-    // the body held by the other leg a stair below, or the ground falling away down a ramp)
-    // takes the weight anyway. (On level ground the forefoot always comes down.)
-    const LegState& carrying = w.state_.legs[static_cast<std::size_t>(w.state_.lead)];
-    const bool lasting = w.state_.time - l.strike_time > kLongestDoubleSupport &&
-                         (w.terrain_->run_at(l.anchor.x) != w.terrain_->run_at(carrying.anchor.x) ||
-                          w.terrain_->slope(l.anchor.x) != 0.0);
+    // A heel that stays down while its forefoot does not come down (double support lasting on:
+    // the body held by the other leg a stair below, the ground falling away down a ramp, the
+    // body stopped on a kerb) takes the weight anyway.
+    const bool lasting = w.state_.time - l.strike_time > kLongestDoubleSupport;
     if (!reached || l.phase == Phase::Flat || l.phase == Phase::Ball || lasting) {
       w.hand_over(w.state_.lead);
     }
