@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include "runtime/common/format.hpp"
+
 namespace fuzzygait::eval {
 
 int RecoveryReport::unsettled_steps(double step_length) const {
@@ -38,9 +40,9 @@ RecoveryReport walk_from_random_start(const gait::ControllerSet& set, gait::Walk
       const rig::LegPoints p = walker.points(side);
       for (const rig::Point& q : {p.hip, p.knee, p.ankle, p.heel, p.ball, p.tip}) {
         if (!std::isfinite(q.x) || !std::isfinite(q.y)) {
-          r.failure = "a point is not finite at " + std::to_string(walker.time()) + " s";
+          r.failure = "a point is not finite at " + common::number_text(walker.time()) + " s";
         } else if (q.y < ground.height(q.x) - 1e-6) {
-          r.failure = "a point is below the ground at " + std::to_string(walker.time()) + " s";
+          r.failure = "a point is below the ground at " + common::number_text(walker.time()) + " s";
         }
         if (!r.sound()) return r;
       }
