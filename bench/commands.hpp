@@ -9,5 +9,7 @@ namespace fuzzygait::bench {
 void add_fuzzy_command(CLI::App& app);
 // `fuzzygait-bench gait`: character-steps per second, against fuzzylite in the walker's loop.
 void add_gait_command(CLI::App& app);
+// `fuzzygait-bench terrain`: a walker's time step on ramps and stairs against level ground.
+void add_terrain_command(CLI::App& app);
 
 }  // namespace fuzzygait::bench

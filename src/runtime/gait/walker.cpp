@@ -667,15 +667,16 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
     case Phase::Ball: {
       const rig::detail::SinCos along = sin_cos(slope);
       const double heel_x = l.anchor.x - sole_length * along.cos;
-      // The heel comes back down where there is ground under it (not over a stair's edge).
-      if (foot_of(tilt, l.angles) >= slope &&
-          terrain_->run_at(heel_x) == terrain_->run_at(l.anchor.x)) {
-        // The heel came back down.
-        l.phase = Phase::Flat;
+      // The heel comes back down where there is ground under it. Over a stair's edge it cannot:
+      // the sole rests on the edge (slope is the angle to it), the heel beyond it no lower.
+      if (foot_of(tilt, l.angles) >= slope) {
         l.angles.ankle = slope - shank_of(tilt, l.angles);
-        const rig::detail::SinCos ground = sin_cos(slope);
-        l.anchor = {l.anchor.x - sole_length * ground.cos, l.anchor.y - sole_length * ground.sin};
-        record(static_cast<rig::Side>(leg), Event::FootFlat, l.anchor);
+        if (terrain_->run_at(heel_x) == terrain_->run_at(l.anchor.x)) {
+          l.phase = Phase::Flat;
+          const rig::detail::SinCos ground = sin_cos(slope);
+          l.anchor = {l.anchor.x - sole_length * ground.cos, l.anchor.y - sole_length * ground.sin};
+          record(static_cast<rig::Side>(leg), Event::FootFlat, l.anchor);
+        }
       }
       l.angles.toe = slope - foot_of(tilt, l.angles);
       break;
@@ -1120,8 +1121,17 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
           ground = ground_under(*w.terrain_, p);
         }
       }
-      double heel_depth = ground.heel - p.heel.y;
-      double ball_depth = ground.ball - p.ball.y;
+      // A foot stands only on a run: a heel or ball over a riser (the toes pushed against it)
+      // lands on the run behind it, at its foot, never part way up the riser.
+      auto footing = [&t](Point q) {
+        if (t.level()) return Point{q.x, t.height(q.x)};
+        const double x = t.point_on_run(q.x, t.run_at(q.x));
+        return Point{x, t.height(x)};
+      };
+      Point heel_footing = footing(p.heel);
+      Point ball_footing = footing(p.ball);
+      double heel_depth = heel_footing.y - p.heel.y;
+      double ball_depth = ball_footing.y - p.ball.y;
       // A swing that drags on over its foothold, the foot hanging above it from a straight leg
       // (the body held up a hair too high), reaches down with the toes.
       if (heel_depth < 0.0 && ball_depth < 0.0 && over_target &&
@@ -1130,8 +1140,10 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
         l.angles.ankle = std::max(l.angles.ankle - kReflexSpeed * h, w.limits_.minimum.ankle);
         p = leg_points(w, leg, w.state_.pelvis, l.angles);
         ground = ground_under(t, p);
-        heel_depth = ground.heel - p.heel.y;
-        ball_depth = ground.ball - p.ball.y;
+        heel_footing = footing(p.heel);
+        ball_footing = footing(p.ball);
+        heel_depth = heel_footing.y - p.heel.y;
+        ball_depth = ball_footing.y - p.ball.y;
       }
       if (heel_depth < 0.0 && ball_depth < 0.0) {
         if (w.state_.lead >= 0) {
@@ -1141,9 +1153,9 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
         continue;
       }
       if (heel_depth >= ball_depth) {
-        w.strike(leg, Phase::Heel, {p.heel.x, ground.heel});
+        w.strike(leg, Phase::Heel, heel_footing);
       } else {
-        w.strike(leg, Phase::Ball, {p.ball.x, ground.ball});
+        w.strike(leg, Phase::Ball, ball_footing);
       }
       if (w.state_.lead == leg) {
         w.settle_foot(leg, l.angles);
