@@ -78,6 +78,8 @@ constexpr double kFootholdMargin = 0.005;
 // A swinging leg aims to land with its knee bent where its target lies more than this (m) within
 // the straight leg's reach, fully at twice this: level steps end a few millimetres within it.
 constexpr double kStraightLanding = 0.02;
+// m: a toe tip this close to the ground rests on it.
+constexpr double kToesResting = 0.0005;
 constexpr double kLongestTimeStep = 0.05;
 
 double thigh_of(double tilt, const LegAngles& a) {
@@ -1145,14 +1147,18 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
         heel_depth = heel_footing.y - p.heel.y;
         ball_depth = ball_footing.y - p.ball.y;
       }
-      if (heel_depth < 0.0 && ball_depth < 0.0) {
+      // Arrived over its tread with the toes already resting on it (bent up by it: a toe landing
+      // going up stairs), the foot has landed: the ball comes down onto the tread.
+      const bool on_toes = l.delta >= kLandingDelta && over_target && t.on_tread(l.target_x) &&
+                           p.tip.y - ground.tip < kToesResting;
+      if (heel_depth < 0.0 && ball_depth < 0.0 && !on_toes) {
         if (w.state_.lead >= 0) {
           placed_tip_ground[static_cast<std::size_t>(leg)] = ground.tip;
           w.end_points_[static_cast<std::size_t>(leg)] = p;
         }
         continue;
       }
-      if (heel_depth >= ball_depth) {
+      if (heel_depth >= ball_depth && !on_toes) {
         w.strike(leg, Phase::Heel, heel_footing);
       } else {
         w.strike(leg, Phase::Ball, ball_footing);
