@@ -10,6 +10,7 @@
 
 #include "fuzzygait/gait/controllers.hpp"
 #include "fuzzygait/gait/walker.hpp"
+#include "fuzzygait/learn/terrain_tune.hpp"
 #include "runtime/gait/walker_stages.hpp"
 #include "support/walks.hpp"
 
@@ -191,3 +192,12 @@ TEST(TerrainWords, TheWalkerSaysWhatGroundItWalks) {
 }
 
 }  // namespace
+
+// The words of the shipped sets' terrain files say what their numbers do ("slow" slower than
+// "fast", "hold" near zero, "extend" negative for a knee): an artist reads the rules, not the
+// numbers (learn::word_penalty's promises).
+TEST(TerrainWords, TheShippedSetsTerrainWordsKeepTheirPromises) {
+  for (const std::string& name : gait::ControllerSet::builtin_names()) {
+    EXPECT_EQ(learn::terrain_word_penalty(gait::ControllerSet::builtin(name)), 0.0) << name;
+  }
+}
