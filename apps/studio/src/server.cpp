@@ -212,6 +212,14 @@ Server::Server(Studio& studio, const ServerOptions& options)
   s.loopback = is_loopback(options.host);
   const auto threads = static_cast<std::size_t>(options.threads);
   s.http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  // SO_REUSEADDR alone (cpp-httplib's default sets SO_REUSEPORT, with which a second studio on
+  // the same port would bind too and take half the connections).
+  s.http.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
+  // Small answers go out at once, not after a delayed acknowledgement.
+  s.http.set_tcp_nodelay(true);
   s.http.set_payload_max_length(options.max_body);
   s.http.set_keep_alive_max_count(1000);
   s.http.set_keep_alive_timeout(5);

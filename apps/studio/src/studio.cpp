@@ -41,7 +41,7 @@ const std::vector<std::pair<std::string, std::string>>& builtin_terrains() {
       {"stairs:0.17:0.28:6", "6 stairs up, 0.17 x 0.28 m"},
       {"stairs:-0.17:0.28:6", "6 stairs down, 0.17 x 0.28 m"},
       {"stairs:0.15:0.30:1+flat:2+stairs:-0.15:0.30:1", "a kerb up and down, 0.15 m"},
-      {"slope:6:3+flat:1+slope:-6:3", "a hill, 6 deg up and down"},
+      {"slope:5:3+flat:2+slope:-5:3", "a hill, 5 deg up and down"},
   };
   return terrains;
 }
