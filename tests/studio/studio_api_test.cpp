@@ -122,13 +122,14 @@ TEST(StudioApi, WalkIsTheLibrarysWalkMeasuredTheSameWay) {
   EXPECT_EQ(walk.at("figures").at(0).at("name"), "foot slip");
   EXPECT_EQ(walk.at("figures").at(0).at("value").get<double>(), report.max_slip * 1e3);
   EXPECT_TRUE(walk.at("warnings").empty());
-  // Frames at 60 a second, every other frame of the 120 recorded, points to 0.1 mm.
+  // Frames at 30 a second, every fourth of the 120 recorded, points to 0.1 mm.
   const json& frames = walk.at("frames");
-  EXPECT_EQ(frames.at("count").get<std::size_t>(), (motion.frames.size() + 1) / 2);
+  EXPECT_EQ(frames.at("count").get<std::size_t>(), (motion.frames.size() + 3) / 4);
   EXPECT_NEAR(frames.at("legs").at(12 + 2 * 5).get<double>(), motion.frames[0].points[1].tip.x,
               5e-5);
-  EXPECT_NEAR(frames.at("angles").at(8 + 1).get<double>(),
-              rig::degrees(motion.frames[1 * 2].pose.legs[0].knee), 5e-3);
+  EXPECT_NEAR(frames.at("legs").at(24 * 3 + 2 + 1).get<double>(),
+              motion.frames[3 * 4].points[0].knee.y, 5e-5);
+  EXPECT_NEAR(frames.at("time").at(3).get<double>(), motion.frames[3 * 4].time, 5e-5);
 }
 
 TEST(StudioApi, MovingAKnotChangesTheControllerAndTheWalkAndUndoRestoresBoth) {
@@ -200,8 +201,12 @@ TEST(StudioApi, EditsOfOneGestureAreOneStepOfTheHistory) {
                                  {"value", 0.5},
                                  {"gesture", "drag-2"}});
   EXPECT_EQ(next.at("history").at("undo"), 2);
+  EXPECT_EQ(next.at("history").at("undo_label"), "swing_hip: delta knot 1 (center) 0.65 -> 0.5");
   const json undone = studio.undo();
   EXPECT_EQ(controller(undone, "swing_hip").at("inputs").at(0).at("knots").at(1), 0.65);
+  // The drag's step reads from where it began to where it ended.
+  EXPECT_EQ(undone.at("history").at("undo_label"),
+            "swing_hip: delta knot 1 (center) 0.828 -> 0.65");
   const json first = studio.undo();
   EXPECT_EQ(controller(first, "swing_hip"),
             controller(Studio(quick("gesture_fresh")).state(), "swing_hip"));

@@ -232,8 +232,9 @@ fuzzy::Term& find_term(fuzzy::Engine& engine, const std::string& variable, const
 // Moves knot `index` of a strong triangular partition to `value`, keeping the partition: the
 // term peaking there and its neighbours' feet move with it; the end knots carry the input's
 // range (and their outer feet keep their distance).
-std::string move_knot(fuzzy::Engine& engine, const std::string& controller,
-                      const std::string& variable, const json& request) {
+// Sets edited's subject, before and after.
+void move_knot(fuzzy::Engine& engine, const std::string& controller, const std::string& variable,
+               const json& request, Edited& edited) {
   fuzzy::InputVariable& v = find_input(engine, variable, controller);
   std::string why;
   if (!fuzzy::as_partition(engine, &why)) {
@@ -270,8 +271,9 @@ std::string move_knot(fuzzy::Engine& engine, const std::string& controller,
     p[2] += shift;
     v.maximum = value;
   }
-  return variable + " knot " + std::to_string(index) + " (" + v.terms[index].name + ") " +
-         number_text(old, 4) + " -> " + number_text(value, 4);
+  edited.subject = variable + " knot " + std::to_string(index) + " (" + v.terms[index].name + ")";
+  edited.before = old;
+  edited.after = value;
 }
 
 // The set's own numbers as the manifest spells them, with the manifest reader's ranges.
@@ -312,6 +314,10 @@ ControllerPlace find_place(const gait::ControllerSet& set, const std::string& id
 }
 
 }  // namespace
+
+std::string Edited::label(double from) const {
+  return subject + " " + number_text(from, 4) + " -> " + number_text(after, 4);
+}
 
 std::vector<ControllerPlace> controller_places(const gait::ControllerSet& set) {
   std::vector<ControllerPlace> places;
@@ -395,16 +401,15 @@ json set_json(const gait::ControllerSet& set) {
 Edited apply_edit(const gait::ControllerSet& set, const json& request) {
   check_fields(request,
                {"controller", "variable", "knot", "term", "parameter", "value", "set", "gesture"});
-  Edited edited{set, {}, {}};
+  Edited edited{set, {}, {}, 0.0, 0.0};
   if (const std::optional<std::string> name = optional_string(request, "set")) {
     check_fields(request, {"set", "value", "gesture"});
     for (const SetParameter& p : set_parameters()) {
       if (*name != p.name) continue;
-      const double old = p.get(set);
-      const double value = number_field(request, "value", p.low, p.high);
-      p.set(edited.set, value);
-      edited.label =
-          std::string(p.name) + " " + number_text(old, 4) + " -> " + number_text(value, 4);
+      edited.before = p.get(set);
+      edited.after = number_field(request, "value", p.low, p.high);
+      p.set(edited.set, edited.after);
+      edited.subject = p.name;
       return edited;
     }
     std::string known;
@@ -416,10 +421,9 @@ Edited apply_edit(const gait::ControllerSet& set, const json& request) {
   const gait::Controller& before = controller_at(set, place);
   fuzzy::Engine engine = before.engine();
   const std::string variable = string_field(request, "variable");
-  std::string change;
   if (request.contains("knot")) {
     check_fields(request, {"controller", "variable", "knot", "value", "gesture"});
-    change = move_knot(engine, place.id, variable, request);
+    move_knot(engine, place.id, variable, request, edited);
   } else {
     fuzzy::Term& term = find_term(engine, variable, string_field(request, "term"), place.id);
     if (request.contains("parameter")) {
@@ -429,10 +433,9 @@ Edited apply_edit(const gait::ControllerSet& set, const json& request) {
                            "term '" + term.name + "' has no numeric parameters (a formula)");
       }
       const auto i = static_cast<std::size_t>(integer_field(request, "parameter", 0, count - 1));
-      const double old = term.parameters[i];
-      term.parameters[i] = number_field(request, "value");
-      change = variable + " " + term.name + " " + fuzzy::parameter_label(term, i) + " " +
-               number_text(old, 4) + " -> " + number_text(term.parameters[i], 4);
+      edited.before = term.parameters[i];
+      edited.after = term.parameters[i] = number_field(request, "value");
+      edited.subject = variable + " " + term.name + " " + fuzzy::parameter_label(term, i);
     } else {
       if (term.kind != fuzzy::TermKind::Constant) {
         throw RequestError(422, "term",
@@ -440,10 +443,9 @@ Edited apply_edit(const gait::ControllerSet& set, const json& request) {
                                std::string(fuzzy::shape_info(term.kind).name) +
                                " term, not a word with one value: name its 'parameter'");
       }
-      const double old = term.parameters.at(0);
-      term.parameters[0] = number_field(request, "value");
-      change = variable + " " + term.name + " " + number_text(old, 4) + " -> " +
-               number_text(term.parameters[0], 4);
+      edited.before = term.parameters.at(0);
+      edited.after = term.parameters[0] = number_field(request, "value");
+      edited.subject = variable + " " + term.name;
     }
   }
   try {
@@ -457,7 +459,7 @@ Edited apply_edit(const gait::ControllerSet& set, const json& request) {
     throw RequestError(422, "value", std::string("the controller would not work: ") + e.what());
   }
   edited.controller = place.id;
-  edited.label = place.id + ": " + change;
+  edited.subject = place.id + ": " + edited.subject;
   return edited;
 }
 

@@ -39,7 +39,13 @@ nlohmann::json set_json(const gait::ControllerSet& set);
 struct Edited {
   gait::ControllerSet set;
   std::string controller;  // the id of the controller changed; empty for the set's parameters
-  std::string label;       // what changed, for the history: "swing_knee: delta knot 2 = 0.6"
+  std::string subject;     // the number changed: "swing_knee: delta knot 1 (center)"
+  double before;           // its value before and after the edit
+  double after;
+  // For the history: "swing_knee: delta knot 1 (center) 0.513 -> 0.6", from `from` (a drag's
+  // first value).
+  std::string label(double from) const;
+  std::string label() const { return label(before); }
 };
 Edited apply_edit(const gait::ControllerSet& set, const nlohmann::json& request);
 

@@ -90,7 +90,9 @@ struct Studio::Session {
   gait::ControllerSet opened;  // the current set as it was opened
   std::vector<Step> undo;
   std::vector<Step> redo;
-  std::string gesture;  // of the last edit, while the next edit may join it
+  std::string gesture;          // of the last edit, while the next edit may join it
+  std::string gesture_subject;  // what that gesture changes, and its value before it began
+  double gesture_from = 0.0;
   detail::WalkSettings settings;
   terrain::Terrain ground = terrain::Terrain::flat();
   eval::Normative reference;
@@ -298,14 +300,17 @@ json Studio::edit(const json& request) {
     throw RequestError(422, "value", std::string("the set would not walk: ") + e.what());
   }
   const std::string gesture = detail::optional_string(request, "gesture").value_or("");
-  if (!gesture.empty() && gesture == s.gesture && !s.undo.empty()) {
+  if (!gesture.empty() && gesture == s.gesture && !s.undo.empty() &&
+      edited.subject == s.gesture_subject) {
     // The same drag: one step of the history from where the drag began.
-    s.undo.back().label = edited.label;
+    s.undo.back().label = edited.label(s.gesture_from);
     s.current = std::move(edited.set);
     s.redo.clear();
     s.forget_walks();
   } else {
-    s.replace(std::move(edited.set), edited.label);
+    s.replace(std::move(edited.set), edited.label());
+    s.gesture_from = edited.before;
+    s.gesture_subject = edited.subject;
   }
   s.gesture = gesture;
   json answer = {{"history", s.history()}, {"walk", s.current_walk()}};
@@ -481,7 +486,10 @@ json Studio::compare(const json& request) {
     throw RequestError(422, "with", next.label + " does not walk these settings: " + e.what());
   }
   s.compared = std::move(next);
-  return {{"compare", s.compared_walk()}};
+  json answer = {{"compare", s.compared_walk()}};
+  // The compared set itself, once: the page draws its knots and words beside the current ones.
+  answer["compare"]["set"] = detail::set_json(s.compared->set);
+  return answer;
 }
 
 Download Studio::download(std::string_view filename) {

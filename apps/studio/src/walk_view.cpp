@@ -142,7 +142,6 @@ json walk_json(const Walked& walked, const terrain::Terrain& ground) {
   std::vector<double> pelvis;  // x, y, tilt (deg)
   std::vector<double> legs;    // left then right: hip, knee, ankle, heel, ball, tip as x, y
   std::vector<int> contact;    // left, right
-  std::vector<double> angles;  // left then right: hip, knee, ankle, toe (deg)
   double low = m.frames.front().pose.pelvis.x;
   double high = low;
   for (std::size_t i = 0; i < m.frames.size(); i += stride) {
@@ -159,9 +158,6 @@ json walk_json(const Walked& walked, const terrain::Terrain& ground) {
         high = std::max(high, q.x);
       }
       contact.push_back(f.contact[s] ? 1 : 0);
-      const rig::LegAngles& a = f.pose.legs[s];
-      angles.insert(angles.end(),
-                    {degrees(a.hip), degrees(a.knee), degrees(a.ankle), degrees(a.toe)});
     }
   }
   json ground_points = json::array();
@@ -174,8 +170,7 @@ json walk_json(const Walked& walked, const terrain::Terrain& ground) {
                    {"time", time},
                    {"pelvis", pelvis},
                    {"legs", legs},
-                   {"contact", contact},
-                   {"angles", angles}}},
+                   {"contact", contact}}},
                  {"segments",
                   {{"thigh", s.thigh},
                    {"shank", s.shank},

@@ -96,8 +96,8 @@ class Studio {
   //   {"controller": ID, "variable": INPUT, "knot": I, "value": X}      a partition's knot I
   //   {"controller": ID, "variable": OUTPUT, "term": WORD, "value": V}  an output word's value
   //   {"controller": ID, "variable": V, "term": T, "parameter": I, "value": X}  any term parameter
-  //   {"parameter": "inertia_s" | "pelvis_tilt_deg" | "swing_knee_reference_sweep_deg"
-  //                 | "shortest_step_leg_lengths", "value": X}
+  //   {"set": "inertia_s" | "pelvis_tilt_deg" | "swing_knee_reference_sweep_deg"
+  //            | "shortest_step_leg_lengths", "value": X}        one of the set's own numbers
   // and may carry "gesture": ID, so that the edits of one drag are one step of the history.
   nlohmann::json edit(const nlohmann::json& request);
   // {"step": M, "stature": M, "terrain": SPEC, "cycles": N}, any of them: the new settings and
@@ -112,8 +112,9 @@ class Studio {
   // {"name": NAME}: writes the current set to WORKSPACE/NAME (manifest.json and FLL files, the
   // layout ControllerSet::load reads), replacing a set saved there before.
   nlohmann::json save(const nlohmann::json& request);
-  // {"with": ID or null}: the set to walk beside the current one, with its walk; "opened" is the
-  // current set as it was opened (before its edits), other IDs as for open().
+  // {"with": ID or null}: the set to walk beside the current one, with its walk and its view (as
+  // state() shows the current set); "opened" is the current set as it was opened (before its
+  // edits), other IDs as for open().
   nlohmann::json compare(const nlohmann::json& request);
   // The current walk as "walk.csv", "walk.bvh", "walk.glb" or "walk.terrain.csv".
   Download download(std::string_view filename);
