@@ -117,6 +117,7 @@ async function resync() {
   const state = await api.get('/api/state');
   studio.state = state;
   for (const c of state.set.controllers) panel.update(c);
+  refreshParameters();
   updateHistory(state.history);
 }
 
@@ -225,6 +226,8 @@ function open(id) {
   request('/api/open', { set: id }, (answer) => {
     applySet(answer);
     showMessage(`Opened ${answer.opened.label}`);
+    // The set as opened is now this one: its terms are drawn beside the edits from here on.
+    if (studio.compare && studio.compare.id === 'opened') compareWith('opened');
   });
 }
 

@@ -79,6 +79,13 @@ class Figure {
   // Builds the body for a stature (metres); sizes in proportion, as the glTF export's.
   build(stature) {
     if (this.built === stature) return;
+    const materials = new Set();
+    this.group.traverse((object) => {
+      if (!object.isMesh) return;
+      object.geometry.dispose();
+      materials.add(object.material);
+    });
+    for (const m of materials) m.dispose();
     this.group.clear();
     this.built = stature;
     const H = stature;

@@ -221,6 +221,22 @@ struct Studio::Session {
     forget_walks();
   }
 
+  // Undo (from undo to redo) or redo (the other way): the set of the step on top of `from`
+  // becomes the current one, which goes onto `to` with the step's label.
+  json step_through(std::vector<Step>& from, std::vector<Step>& to) {
+    Step step = std::move(from.back());
+    from.pop_back();
+    to.push_back({std::move(current), step.label});
+    current = std::move(step.set);
+    gesture.clear();
+    fit_step();
+    forget_walks();
+    return {{"set", detail::set_json(current)},
+            {"history", history()},
+            {"settings", settings_json()},
+            {"walk", current_walk()}};
+  }
+
   // A step the set walks: the setting, or the nearest the set takes (a set whose shortest step
   // is longer than the current one).
   void fit_step() {
@@ -387,33 +403,13 @@ json Studio::change_settings(const json& request) {
 json Studio::undo() {
   Session& s = *session_;
   if (s.undo.empty()) throw RequestError(409, "undo", "nothing to undo");
-  Session::Step step = std::move(s.undo.back());
-  s.undo.pop_back();
-  s.redo.push_back({std::move(s.current), step.label});
-  s.current = std::move(step.set);
-  s.gesture.clear();
-  s.fit_step();
-  s.forget_walks();
-  return {{"set", detail::set_json(s.current)},
-          {"history", s.history()},
-          {"settings", s.settings_json()},
-          {"walk", s.current_walk()}};
+  return s.step_through(s.undo, s.redo);
 }
 
 json Studio::redo() {
   Session& s = *session_;
   if (s.redo.empty()) throw RequestError(409, "redo", "nothing to redo");
-  Session::Step step = std::move(s.redo.back());
-  s.redo.pop_back();
-  s.undo.push_back({std::move(s.current), step.label});
-  s.current = std::move(step.set);
-  s.gesture.clear();
-  s.fit_step();
-  s.forget_walks();
-  return {{"set", detail::set_json(s.current)},
-          {"history", s.history()},
-          {"settings", s.settings_json()},
-          {"walk", s.current_walk()}};
+  return s.step_through(s.redo, s.undo);
 }
 
 json Studio::open(const json& request) {
