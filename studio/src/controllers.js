@@ -181,6 +181,7 @@ class MembershipPlot {
       handle.setPointerCapture(event.pointerId);
       handle.focus();
       this.dragging = index;
+      this.moved = false;
       this.drawHandles();
     });
     handle.addEventListener('pointermove', (event) => {
@@ -191,7 +192,8 @@ class MembershipPlot {
       if (this.dragging !== index) return;
       this.dragging = -1;
       this.drawHandles();
-      this.onDrag(index, this.input.knots[index], 'end', event);
+      // A click that moved nothing changes nothing.
+      if (this.moved) this.onDrag(index, this.input.knots[index], 'end', event);
     };
     handle.addEventListener('pointerup', end);
     handle.addEventListener('pointercancel', end);
@@ -209,6 +211,7 @@ class MembershipPlot {
     const value = this.clamp(index, wanted);
     if (value === this.input.knots[index]) return;
     moveKnot(this.input, index, value);
+    this.moved = true;
     this.draw();
     this.onDrag(index, value, phase, event);
   }
@@ -336,7 +339,13 @@ class ControllerCard {
     this.words = {};
     this.controllers = {};
     if (!out || out.words.length === 0) return;
-    this.gui = new GUI({ container: this.element.querySelector('.words'), title: `${out.name}: ${out.description || ''}`, width: WIDTH });
+    const box = this.element.querySelector('.words');
+    box.replaceChildren();
+    const caption = document.createElement('p');
+    caption.className = 'words-caption';
+    caption.innerHTML = `<b>${escapeHtml(out.name)}</b> ${escapeHtml(out.description || '')}`;
+    box.append(caption);
+    this.gui = new GUI({ container: box, title: `the words of ${out.name}`, width: WIDTH });
     const finite = out.range.filter((v) => v !== null).map(Math.abs);
     for (const word of out.words) {
       this.words[word.name] = word.value;

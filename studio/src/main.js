@@ -184,29 +184,31 @@ function renderSet() {
 
 // ---- edits -----------------------------------------------------------------------------------
 
+// A drag, a slide: one gesture, one step of the history. Its edits go out as the value moves; its
+// end sends the last value unless it went out already.
 let gestureCount = 0;
-const gestures = new Map();
-function gesture(key, phase) {
-  if (!gestures.has(key)) gestures.set(key, `g${++gestureCount}`);
-  const id = gestures.get(key);
+const gestures = new Map(); // key -> {id, sent}
+function editInGesture(key, body, value, phase, startedAt) {
+  if (!gestures.has(key)) gestures.set(key, { id: `g${++gestureCount}`, sent: undefined });
+  const g = gestures.get(key);
   if (phase === 'end') gestures.delete(key);
-  return id;
+  if (value === g.sent) return;
+  g.sent = value;
+  request('/api/edit', { ...body, value, gesture: g.id }, applyEdit, startedAt, g.id);
 }
 
 function onKnot(controller, variable, knot, value, phase, event) {
-  const id = gesture(`${controller}/${variable}/${knot}`, phase);
-  request('/api/edit', { controller, variable, knot, value, gesture: id }, applyEdit,
-    event ? event.timeStamp : performance.now(), id);
+  editInGesture(`${controller}/${variable}/${knot}`, { controller, variable, knot }, value, phase,
+    event ? event.timeStamp : performance.now());
 }
 
 function onWord(controller, variable, term, value, phase) {
-  const id = gesture(`${controller}/${variable}/${term}`, phase);
-  request('/api/edit', { controller, variable, term, value, gesture: id }, applyEdit, performance.now(), id);
+  editInGesture(`${controller}/${variable}/${term}`, { controller, variable, term }, value, phase,
+    performance.now());
 }
 
 function onSetParameter(name, value, phase) {
-  const id = gesture(`set/${name}`, phase);
-  request('/api/edit', { set: name, value, gesture: id }, applyEdit, performance.now(), id);
+  editInGesture(`set/${name}`, { set: name }, value, phase, performance.now());
 }
 
 function changeSettings(change) {

@@ -75,3 +75,15 @@ export class Clock {
     return this.t;
   }
 }
+
+// The ground's height at x, from its profile ([[x, y], ...], x increasing; a riser is two points
+// close together); level beyond the ends.
+export function heightAt(ground, x) {
+  if (x <= ground[0][0]) return ground[0][1];
+  for (let i = 0; i + 1 < ground.length; i++) {
+    const [x0, y0] = ground[i];
+    const [x1, y1] = ground[i + 1];
+    if (x <= x1) return x1 > x0 ? y0 + ((y1 - y0) * (x - x0)) / (x1 - x0) : y1;
+  }
+  return ground[ground.length - 1][1];
+}

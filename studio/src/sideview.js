@@ -2,7 +2,7 @@
 // The near (left) leg dark, the far (right) leg light, a foot in contact marked, the ground in
 // section, and the left ankle's path over the last second with a dot every 1/30 s: its spacing
 // is the walk's timing. A compared set walks as a dashed orange outline.
-import { makePose } from './motion.js';
+import { heightAt, makePose } from './motion.js';
 
 const NEAR = '#1f3b63';
 const FAR = '#8ea4c4';
@@ -73,6 +73,7 @@ export class SideView {
     ctx.fillStyle = '#55606e';
     ctx.font = '12px system-ui, sans-serif';
     ctx.fillText(`t ${t.toFixed(2)} s`, 10, 18);
+    this.drawLegend(ctx);
   }
 
   drawGround(ctx, ground, X, Y, scale) {
@@ -100,6 +101,27 @@ export class SideView {
     for (let x = Math.ceil(left / 0.25) * 0.25; x < right; x += 0.25) {
       const y = heightAt(ground, x);
       ctx.fillRect(X(x) - 0.5, Y(y) + 2, 1, Math.abs(x % 1) < 1e-6 ? 9 : 5);
+    }
+  }
+
+  drawLegend(ctx) {
+    const items = [[NEAR, 'left leg (near)'], [FAR, 'right leg'], [CONTACT, 'foot on the ground'],
+      [NEAR, '• left ankle, a dot each 1/30 s']];
+    if (this.compare) items.push([GHOST, 'compared set']);
+    ctx.font = '11px system-ui, sans-serif';
+    let y = 18;
+    for (const [colour, text] of items) {
+      const x = this.width - 170;
+      if (text.startsWith('•')) {
+        ctx.fillStyle = colour;
+        ctx.fillText(text, x, y);
+      } else {
+        ctx.fillStyle = colour;
+        ctx.fillRect(x, y - 5, 16, 3);
+        ctx.fillStyle = '#55606e';
+        ctx.fillText(text, x + 22, y);
+      }
+      y += 15;
     }
   }
 
@@ -149,14 +171,4 @@ export class SideView {
     ctx.stroke();
     ctx.setLineDash([]);
   }
-}
-
-function heightAt(ground, x) {
-  if (x <= ground[0][0]) return ground[0][1];
-  for (let i = 0; i + 1 < ground.length; i++) {
-    const [x0, y0] = ground[i];
-    const [x1, y1] = ground[i + 1];
-    if (x <= x1) return x1 > x0 ? y0 + ((y1 - y0) * (x - x0)) / (x1 - x0) : y1;
-  }
-  return ground[ground.length - 1][1];
 }

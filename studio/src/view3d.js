@@ -4,7 +4,7 @@
 // character walks beside it when a set is compared.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { makePose } from './motion.js';
+import { heightAt, makePose } from './motion.js';
 
 const GROUND_WIDTH = 2.6; // metres across the walk
 const TILE = 0.5; // metres, the ground's checker
@@ -247,6 +247,16 @@ export class View3D {
     this.controls.maxPolarAngle = Math.PI * 0.49;
     this.figure = new Figure(this.scene, false);
     this.ghost = new Figure(this.scene, true);
+    // A soft shadow under each character, on the ground below its pelvis.
+    const shadow = () => {
+      const mesh = new THREE.Mesh(new THREE.CircleGeometry(0.32, 24),
+        new THREE.MeshBasicMaterial({ color: 0x000000, transparent: true, opacity: 0.16, depthWrite: false }));
+      mesh.rotation.x = -Math.PI / 2;
+      mesh.scale.set(1.3, 0.6, 1);
+      this.scene.add(mesh);
+      return mesh;
+    };
+    this.shadows = [shadow(), shadow()];
     this.ground = null;
     this.groundKey = '';
     this.motion = null;
@@ -291,6 +301,11 @@ export class View3D {
     this.figure.place(this.motion, t, 0);
     this.ghost.visible = !!this.compare;
     if (this.compare) this.ghost.place(this.compare, t, COMPARE_OFFSET);
+    this.shadows[1].visible = !!this.compare;
+    [[this.figure, 0], [this.ghost, COMPARE_OFFSET]].forEach(([figure, z], i) => {
+      const x = figure.pose.pelvis.x;
+      this.shadows[i].position.set(x, heightAt(this.motion.ground, x) + 0.004, z);
+    });
     // Follow the pelvis: the target moves with it and the camera keeps its offset to it.
     const p = this.figure.pose.pelvis;
     const target = new THREE.Vector3(p.x, p.y * 0.85, this.compare ? COMPARE_OFFSET / 2 : 0);

@@ -219,7 +219,7 @@ try {
   const h2 = knot('swing_knee', 'delta', 2);
   await h2.scrollIntoViewIfNeeded();
   const b2 = await h2.boundingBox();
-  const edits = 15;
+  const edits = 20;
   for (let i = 0; i < edits; i++) {
     const x = b2.x + b2.width / 2 + (i % 2 === 0 ? 0 : -3);
     const target = b2.x + b2.width / 2 + (i % 2 === 0 ? -3 : 0);

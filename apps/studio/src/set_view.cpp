@@ -65,13 +65,14 @@ json term_json(const fuzzy::Term& t) {
   return term;
 }
 
-// The controller's output with its inputs at x0 (and x1), the other metrics 0.
+// The controller's output with its inputs at x0 (and x1), the other metrics 0, to a thousandth
+// (it is drawn, and an edit's answer carries a two-input controller's 961 of them).
 double respond(const gait::Controller& c, fuzzy::Workspace& workspace, double x0, double x1) {
   gait::MetricValues metrics{};
   metrics[static_cast<std::size_t>(c.input(0))] = x0;
   if (c.input_count() == 2) metrics[static_cast<std::size_t>(c.input(1))] = x1;
   const double y = c.evaluate(metrics, workspace);
-  return std::isfinite(y) ? y : 0.0;
+  return std::isfinite(y) ? std::round(y * 1e3) / 1e3 : 0.0;
 }
 
 json response_json(const gait::Controller& c) {
