@@ -64,6 +64,19 @@ export class Curves {
     }
   }
 
+  // A line at `percent` of the gait cycle on each chart: where the character is now.
+  showCycle(percent) {
+    for (const entry of this.plots) {
+      if (!entry.cursor) {
+        entry.cursor = document.createElement('div');
+        entry.cursor.className = 'cycle-cursor';
+        entry.plot.over.append(entry.cursor);
+      }
+      entry.cursor.style.display = percent === null ? 'none' : 'block';
+      if (percent !== null) entry.cursor.style.left = `${entry.plot.valToPos(percent, 'x')}px`;
+    }
+  }
+
   setReference(reference) {
     this.reference = reference;
   }

@@ -368,12 +368,56 @@ function timed(list, draw) {
 }
 
 function frame() {
-  if (motion && !studio.frozen) {
+  if (motion) {
     const t = clock.tick(motion.duration);
-    if (!studio.skip3d) timed(studio.frameMs.view3d, () => view3d.render(t));
-    if (!studio.skipSide) timed(studio.frameMs.side, () => side.render(t));
+    timed(studio.frameMs.view3d, () => view3d.render(t));
+    timed(studio.frameMs.side, () => side.render(t));
+    curves.showCycle(motion.cyclePercent(t));
   }
   requestAnimationFrame(frame);
+}
+
+// Scrubbing: drag across the side view to move through the walk (it pauses); a double click, or
+// the space bar, plays it again; with the walk paused the arrow keys step a frame (1/30 s).
+function wirePlayback() {
+  const canvas = $('#side-canvas');
+  let from = null;
+  canvas.addEventListener('pointerdown', (event) => {
+    canvas.setPointerCapture(event.pointerId);
+    from = { x: event.clientX, t: clock.t };
+    clock.playing = false;
+    syncPlaying();
+  });
+  canvas.addEventListener('pointermove', (event) => {
+    if (!from || !motion) return;
+    // A pixel is as much time as the pelvis takes to cross it at the walk's speed.
+    const speed = (studio.walk.gait && studio.walk.gait.speed) || 1.3;
+    const t = from.t + (event.clientX - from.x) / side.scale / speed;
+    clock.t = Math.min(Math.max(t, 0), motion.duration);
+  });
+  const end = () => (from = null);
+  canvas.addEventListener('pointerup', end);
+  canvas.addEventListener('pointercancel', end);
+  canvas.addEventListener('dblclick', () => {
+    clock.playing = true;
+    syncPlaying();
+  });
+  document.addEventListener('keydown', (event) => {
+    if (event.target.closest('input, select, textarea, .knot')) return;
+    if (event.key === ' ') {
+      event.preventDefault();
+      clock.playing = !clock.playing;
+      syncPlaying();
+    } else if (!clock.playing && (event.key === 'ArrowLeft' || event.key === 'ArrowRight') && motion) {
+      event.preventDefault();
+      clock.t = Math.min(Math.max(clock.t + (event.key === 'ArrowLeft' ? -1 : 1) / 30, 0), motion.duration);
+    }
+  });
+}
+
+function syncPlaying() {
+  settingsModel.playing = clock.playing;
+  for (const folder of settingsGui.folders) for (const c of folder.controllers) c.updateDisplay();
 }
 
 async function start() {
@@ -382,6 +426,7 @@ async function start() {
   curves = new Curves($('#curves'));
   panel = new ControllerPanel($('#controller-list'), { onKnot, onWord });
   wireToolbar();
+  wirePlayback();
   const [state, walk] = await Promise.all([api.get('/api/state'), api.get('/api/walk')]);
   studio.state = state;
   curves.setReference(state.reference);

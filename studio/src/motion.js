@@ -18,6 +18,25 @@ export class Motion {
     // The stature the legs stand for (leg length is 0.530 of it: Winter 2009, as the rig's).
     this.stature = (s.thigh + s.shank + s.ankle_height) / 0.530;
     this.ground = walk.ground;
+    // The left foot's strikes (its contact beginning, 0.35 s at least after the last, as the
+    // measuring's): they part the gait cycles the curves are drawn over.
+    this.strikes = [];
+    for (let i = 1; i < this.count; i++) {
+      const begins = this.contactData[i * 2] === 1 && this.contactData[(i - 1) * 2] === 0;
+      if (begins && (this.strikes.length === 0 || this.time[i] - this.strikes.at(-1) >= 0.35)) {
+        this.strikes.push(this.time[i]);
+      }
+    }
+  }
+
+  // Where in its gait cycle the left leg is at time t, in percent (0 at its strike), or null
+  // before the first strike and after the last.
+  cyclePercent(t) {
+    const s = this.strikes;
+    for (let k = 0; k + 1 < s.length; k++) {
+      if (t >= s[k] && t < s[k + 1]) return (100 * (t - s[k])) / (s[k + 1] - s[k]);
+    }
+    return null;
   }
 
   // The frame index at or before time t (s, within the walk) and the fraction to the next.

@@ -21,6 +21,7 @@ export class SideView {
     this.ghostPose = makePose();
     this.trailPose = makePose();
     this.centre = null;
+    this.scale = 1;
     new ResizeObserver(() => this.resize()).observe(canvas.parentElement);
     this.resize();
   }
@@ -50,6 +51,7 @@ export class SideView {
     const H = m.stature;
     // Metres to pixels: the body and a stride either side fit.
     const scale = Math.min(this.height / (1.25 * H), this.width / 4.2);
+    this.scale = scale;
     // The view follows the pelvis, smoothly in height (stairs lift it a tread at a time).
     const targetY = pose.pelvis.y - 0.05 * H;
     if (!this.centre || Math.abs(this.centre.x - pose.pelvis.x) > 2) {
@@ -108,11 +110,13 @@ export class SideView {
     const items = [[NEAR, 'left leg (near)'], [FAR, 'right leg'], [CONTACT, 'foot on the ground'],
       [NEAR, '• left ankle, a dot each 1/30 s']];
     if (this.compare) items.push([GHOST, 'compared set']);
+    items.push(['#8a94a3', '· drag: scrub, double-click: play']);
     ctx.font = '11px system-ui, sans-serif';
+    const widest = Math.max(...items.map(([, text]) => ctx.measureText(text).width + 22));
+    const x = this.width - widest - 10;
     let y = 18;
     for (const [colour, text] of items) {
-      const x = this.width - 170;
-      if (text.startsWith('•')) {
+      if (text.startsWith('•') || text.startsWith('·')) {
         ctx.fillStyle = colour;
         ctx.fillText(text, x, y);
       } else {

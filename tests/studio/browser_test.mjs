@@ -273,6 +273,9 @@ try {
   await page.selectOption('#compare', 'opened');
   await idle();
   await studio(() => window.studio.seek(2.55));
+  // The notice of the reset fades first.
+  await page.waitForFunction(() => !document.querySelector('#message').classList.contains('visible'),
+    null, { timeout: 10000 });
   await idle();
   await page.waitForTimeout(300);
   await shot('studio.png');

@@ -21,8 +21,8 @@
 namespace fuzzygait::studio {
 
 // A refused request: the HTTP status it answers with (400 malformed, 404 unknown, 409 nothing to
-// undo or redo, 413 too large, 422 a value out of range), the request's field at fault ("value",
-// "step", "body", ...) and a sentence saying what was expected.
+// undo or redo, 413 too large, 422 a value out of range; 500 for a save the disk refuses), the
+// request's field at fault ("value", "step", "body", ...) and a sentence saying what went wrong.
 class RequestError : public std::invalid_argument {
  public:
   RequestError(int status, std::string field, const std::string& message);
