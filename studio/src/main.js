@@ -368,8 +368,11 @@ function timed(list, draw) {
 }
 
 function frame() {
-  if (motion) {
-    const t = clock.tick(motion.duration);
+  const t = motion ? clock.tick(motion.duration) : 0;
+  // Drawn in software, the views wait while a request is out: the rasteriser would take the
+  // processor from its answer, and they would only draw the walk it replaces (docs/studio.md,
+  // "Latency").
+  if (motion && !(busy && view3d.software)) {
     timed(studio.frameMs.view3d, () => view3d.render(t));
     timed(studio.frameMs.side, () => side.render(t));
     curves.showCycle(motion.cyclePercent(t));

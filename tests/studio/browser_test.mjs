@@ -210,6 +210,26 @@ try {
   await page.selectOption('#compare', '');
   await idle();
 
+  // ---- an output word typed into its slider's field, a step length into the panel's ----
+  const undoBefore = (await studio(() => window.studio.state.history)).undo;
+  const word = page.locator('.controller[data-controller="swing_knee"] [data-word="hold"] input').first();
+  await word.fill('50');
+  await word.press('Enter');
+  await idle();
+  const hold = await studio(() => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee')
+    .outputs[0].words.find((w) => w.name === 'hold').value);
+  check(hold === 50, `the word 'hold' took the value typed (${hold})`);
+  check((await studio(() => window.studio.state.history)).undo === undoBefore + 1, 'the word is one step of the history');
+  const step = page.locator('#settings').getByLabel('step length (m)', { exact: true });
+  await step.fill('0.6');
+  await step.press('Enter');
+  await idle();
+  const walked = await studio(() => window.studio.walk.gait.step_length);
+  check(Math.abs(walked - 0.6) < 0.03, `the walk takes the step length typed (${walked.toFixed(3)} m)`);
+  await step.fill('0.7');
+  await step.press('Enter');
+  await idle();
+
   // ---- edit-to-redraw latency over 10 cycles: isolated edits, each a small drag ----
   await studio(() => {
     window.studio.latencies.length = 0;
