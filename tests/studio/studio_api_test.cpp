@@ -20,6 +20,7 @@
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
 #include "fuzzygait/studio/studio.hpp"
+#include "scratch.hpp"
 
 namespace fuzzygait {
 namespace {
@@ -31,11 +32,7 @@ using studio::StudioOptions;
 using ::testing::HasSubstr;
 
 std::filesystem::path scratch(const std::string& name) {
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / "fuzzygait_studio_api" / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
+  return test::studio_scratch("api", name);
 }
 
 StudioOptions quick(const std::string& workspace) {
@@ -213,7 +210,8 @@ TEST(StudioApi, EditsOfOneGestureAreOneStepOfTheHistory) {
 }
 
 TEST(StudioApi, RefusalsNameTheFieldAndChangeNothing) {
-  Studio studio(quick("refusals"));
+  const StudioOptions options = quick("refusals");
+  Studio studio(options);
   studio.edit(
       {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 40}});
   const json state = studio.state();
@@ -309,8 +307,7 @@ TEST(StudioApi, RefusalsNameTheFieldAndChangeNothing) {
   }
   EXPECT_EQ(studio.state(), state);
   EXPECT_EQ(studio.walk(), walk);
-  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(::testing::TempDir()) /
-                                       "fuzzygait_studio_api" / "escape"));
+  EXPECT_FALSE(std::filesystem::exists(options.workspace.parent_path() / "escape"));
 }
 
 TEST(StudioApi, NothingToUndoIsAConflict) {

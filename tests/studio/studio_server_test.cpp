@@ -24,6 +24,7 @@
 
 #include "fuzzygait/studio/server.hpp"
 #include "fuzzygait/studio/studio.hpp"
+#include "scratch.hpp"
 #include "support/text.hpp"
 
 namespace fuzzygait {
@@ -33,11 +34,7 @@ using nlohmann::json;
 using ::testing::HasSubstr;
 
 std::filesystem::path scratch(const std::string& name) {
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / "fuzzygait_studio_server" / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
+  return test::studio_scratch("server", name);
 }
 
 studio::ServerOptions any_port() {
