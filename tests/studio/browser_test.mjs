@@ -263,7 +263,8 @@ try {
     `slowest ${sorted(totals).at(-1).toFixed(1)}; server ${median(servers).toFixed(1)} ms, ` +
     `request and answer ${median(requests).toFixed(1)} ms, drawing ${median(applies).toFixed(1)} ms`);
   check(totals.length >= edits, `every edit was measured (${totals.length})`);
-  check(median(totals) < maxMedian, `median edit-to-redraw under ${maxMedian} ms`);
+  if (Number.isFinite(maxMedian)) check(median(totals) < maxMedian, `median edit-to-redraw under ${maxMedian} ms`);
+  else console.log('     (no bound on the latency asked for: a sanitizer build)');
 
   // ---- stairs: the terrain control ----
   await settingSelect('terrain').selectOption({ label: '6 stairs up, 0.17 x 0.28 m' });
