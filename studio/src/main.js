@@ -166,7 +166,12 @@ function applyEdit(answer) {
 // Open, undo and redo change the whole set.
 function applySet(answer) {
   studio.state.set = answer.set;
+  const openedBefore = studio.state.opened.id;
   if (answer.opened) studio.state.opened = answer.opened;
+  // The set as opened changed (an open, or its undo): a comparison with it draws its terms anew.
+  if (studio.compare && studio.compare.id === 'opened' && studio.state.opened.id !== openedBefore) {
+    compareWith('opened');
+  }
   if (answer.settings) studio.state.settings = answer.settings;
   updateHistory(answer.history);
   renderSet();
@@ -228,8 +233,6 @@ function open(id) {
   request('/api/open', { set: id }, (answer) => {
     applySet(answer);
     showMessage(`Opened ${answer.opened.label}`);
-    // The set as opened is now this one: its terms are drawn beside the edits from here on.
-    if (studio.compare && studio.compare.id === 'opened') compareWith('opened');
   });
 }
 

@@ -354,8 +354,24 @@ TEST(StudioApi, OpeningAStyleIsAResetThatCanBeUndone) {
   EXPECT_EQ(controller(reset, "swing_knee"),
             controller(Studio(quick("reset_fresh")).state(), "swing_knee"));
   EXPECT_EQ(reset.at("history").at("undo"), 2);
+  studio.open({{"set", "style:heavy"}});
+  EXPECT_EQ(studio.state().at("opened").at("id"), "style:heavy");
+  studio.undo();
+  EXPECT_EQ(studio.state().at("opened").at("id"), "style:default");
   studio.undo();
   EXPECT_EQ(studio.state().at("set"), edited.at("set"));
+}
+
+TEST(StudioApi, TheSetAsOpenedFollowsOpensAndTheirUndo) {
+  Studio studio(quick("opened_follows"));
+  studio.compare({{"with", "opened"}});
+  const json default_walk = timeless(studio.walk().at("compare").at("walk"));
+  const json heavy = studio.open({{"set", "style:heavy"}});
+  EXPECT_EQ(heavy.at("compare").at("label"), "heavy (shipped style) as opened");
+  EXPECT_EQ(timeless(heavy.at("compare").at("walk")), timeless(heavy.at("walk")));
+  const json undone = studio.undo();
+  EXPECT_EQ(undone.at("opened").at("id"), "style:default");
+  EXPECT_EQ(timeless(undone.at("compare").at("walk")), default_walk);
 }
 
 TEST(StudioApi, CompareWalksTheSetAsOpenedBesideTheEditedOne) {

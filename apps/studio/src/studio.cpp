@@ -1,6 +1,7 @@
 #include "fuzzygait/studio/studio.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -71,23 +72,29 @@ std::pair<double, double> step_range(const gait::ControllerSet& set, double stat
 }  // namespace
 
 struct Studio::Session {
+  // The set last opened, as it was opened (the compare choice "opened").
+  struct Opened {
+    std::string id;
+    std::string label;
+    std::shared_ptr<const gait::ControllerSet> set;
+  };
   struct Step {
     gait::ControllerSet set;  // the set before the step
     std::string label;        // what the step did
+    Opened opened;            // the set opened before the step
   };
   struct Compared {
     std::string id;
     std::string label;
     gait::ControllerSet set;
+    std::shared_ptr<const gait::ControllerSet> set_source;  // for "opened", the set opened
     std::optional<detail::Walked> walked;
     std::optional<json> view;
   };
 
   StudioOptions options;
   gait::ControllerSet current;
-  std::string opened_id;
-  std::string opened_label;
-  gait::ControllerSet opened;  // the current set as it was opened
+  Opened opened;
   std::vector<Step> undo;
   std::vector<Step> redo;
   std::string gesture;          // of the last edit, while the next edit may join it
@@ -213,7 +220,7 @@ struct Studio::Session {
 
   // Puts `set` in place of the current one as one step of the history.
   void replace(gait::ControllerSet set, std::string label) {
-    undo.push_back({std::move(current), std::move(label)});
+    undo.push_back({std::move(current), std::move(label), opened});
     if (undo.size() > Limits::kHistory) undo.erase(undo.begin());
     redo.clear();
     gesture.clear();
@@ -226,16 +233,33 @@ struct Studio::Session {
   json step_through(std::vector<Step>& from, std::vector<Step>& to) {
     Step step = std::move(from.back());
     from.pop_back();
-    to.push_back({std::move(current), step.label});
+    to.push_back({std::move(current), step.label, opened});
     current = std::move(step.set);
+    set_opened(std::move(step.opened));
     gesture.clear();
     fit_step();
     forget_walks();
     return {{"set", detail::set_json(current)},
+            {"opened", opened_json()},
             {"history", history()},
             {"settings", settings_json()},
-            {"walk", current_walk()}};
+            {"walk", current_walk()},
+            {"compare", compared_walk()}};
   }
+
+  // A new set opened; a comparison with the set as opened follows it.
+  void set_opened(Opened next) {
+    opened = std::move(next);
+    if (compared && compared->id == "opened" && compared->set_source != opened.set) {
+      compared->set = *opened.set;
+      compared->set_source = opened.set;
+      compared->label = opened.label + " as opened";
+      compared->walked.reset();
+      compared->view.reset();
+    }
+  }
+
+  json opened_json() const { return {{"id", opened.id}, {"label", opened.label}}; }
 
   // A step the set walks: the setting, or the nearest the set takes (a set whose shortest step
   // is longer than the current one).
@@ -264,16 +288,16 @@ Studio::Studio(StudioOptions options) : session_(std::make_unique<Session>()) {
   s.reference = io::load_normative(s.settings.reference);
   if (!o.folders.empty()) {
     s.current = gait::ControllerSet::load(o.folders.front());
-    s.opened_id = "folder:0";
-    s.opened_label = s.current.name + " (" + o.folders.front().string() + ")";
+    s.opened.id = "folder:0";
+    s.opened.label = s.current.name + " (" + o.folders.front().string() + ")";
     for (const std::filesystem::path& folder : o.folders)
       gait::ControllerSet::load(folder);  // each must load now, not when first opened
   } else {
     s.current = gait::ControllerSet::builtin(o.style);
-    s.opened_id = "style:" + o.style;
-    s.opened_label = o.style + " (shipped style)";
+    s.opened.id = "style:" + o.style;
+    s.opened.label = o.style + " (shipped style)";
   }
-  s.opened = s.current;
+  s.opened.set = std::make_shared<const gait::ControllerSet>(s.current);
   const auto [low, high] = step_range(s.current, o.stature);
   if (!(o.step >= low && o.step <= high)) {
     throw std::invalid_argument("step must be between " + number_text(low, 3) + " and " +
@@ -292,7 +316,7 @@ json Studio::state() const {
   for (const std::string& spec : s.options.terrains)
     terrains.push_back({{"spec", spec}, {"label", spec}});
   return {{"set", detail::set_json(s.current)},
-          {"opened", {{"id", s.opened_id}, {"label", s.opened_label}}},
+          {"opened", s.opened_json()},
           {"history", s.history()},
           {"settings", s.settings_json()},
           {"sets", s.sets()},
@@ -417,15 +441,13 @@ json Studio::open(const json& request) {
   detail::check_fields(request, {"set"});
   const std::string id = detail::string_field(request, "set");
   auto [set, label] = s.load(id, "set");
-  s.opened = set;
-  s.opened_id = id;
-  s.opened_label = label;
+  auto opened = std::make_shared<const gait::ControllerSet>(set);
   s.replace(std::move(set), "open " + label);
+  s.set_opened({id, label, std::move(opened)});
   s.fit_step();
-  if (s.compared && s.compared->id == "opened") s.compared->set = s.opened;
   s.forget_walks();
   return {{"set", detail::set_json(s.current)},
-          {"opened", {{"id", s.opened_id}, {"label", s.opened_label}}},
+          {"opened", s.opened_json()},
           {"history", s.history()},
           {"settings", s.settings_json()},
           {"walk", s.current_walk()},
@@ -471,8 +493,9 @@ json Studio::compare(const json& request) {
   Session::Compared next;
   next.id = id;
   if (id == "opened") {
-    next.set = s.opened;
-    next.label = s.opened_label + " as opened";
+    next.set = *s.opened.set;
+    next.set_source = s.opened.set;
+    next.label = s.opened.label + " as opened";
   } else {
     std::tie(next.set, next.label) = s.load(id, "with");
   }

@@ -103,7 +103,8 @@ class Studio {
   // {"step": M, "stature": M, "terrain": SPEC, "cycles": N}, any of them: the new settings and
   // walk.
   nlohmann::json change_settings(const nlohmann::json& request);
-  // Steps back or forward through the history: the whole set, the history and the walk.
+  // Steps back or forward through the history (an open too): the whole set, the set opened, the
+  // history, the settings, the walk and the compared walk (which follows the set opened).
   nlohmann::json undo();
   nlohmann::json redo();
   // {"set": ID}: opens a built-in style ("style:NAME", also a reset to it), a folder
