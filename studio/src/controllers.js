@@ -349,8 +349,10 @@ class ControllerCard {
     const finite = out.range.filter((v) => v !== null).map(Math.abs);
     for (const word of out.words) {
       this.words[word.name] = word.value;
-      const base = Math.max(1, ...finite, ...out.words.map((w) => Math.abs(w.value) * 1.3));
-      const step = 10 ** (Math.floor(Math.log10(base)) - 3);
+      const wide = Math.max(1, ...finite, ...out.words.map((w) => Math.abs(w.value) * 1.3));
+      const step = 10 ** (Math.floor(Math.log10(wide)) - 3);
+      // lil-gui counts steps from the slider's minimum: a whole number of steps keeps them round.
+      const base = Math.ceil(wide / step) * step;
       const was = compared ? compared.outputs[0].words.find((w) => w.name === word.name) : null;
       const label = readable(word.name) + (was && was.value !== word.value ? ` (was ${niceNumber(was.value)})` : '');
       const c = this.gui.add(this.words, word.name, -base, base, step).name(label);

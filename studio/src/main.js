@@ -264,7 +264,8 @@ function buildSettings() {
     style: 'default',
   });
   const walk = settingsGui.addFolder('Walk');
-  const [low, high] = s.limits.step;
+  // lil-gui counts steps from the slider's minimum: a round minimum keeps the values round.
+  const [low, high] = roundedInward(s.limits.step, 0.005);
   walk.add(settingsModel, 'step', low, high, 0.005).name('step length (m)')
     .onChange((v) => changeSettings({ step: v }));
   walk.add(settingsModel, 'stature', ...s.limits.stature, 0.01).name('stature (m)')
@@ -316,12 +317,19 @@ function refreshParameters() {
   for (const p of studio.state.set.parameters) parameterModel[p.name] = p.value;
   for (const c of parameterGui.controllers) c.updateDisplay();
 }
+// [low, high] moved inward to multiples of `unit`.
+function roundedInward([low, high], unit) {
+  return [Math.ceil(low / unit - 1e-9) * unit, Math.floor(high / unit + 1e-9) * unit]
+    .map((v) => Number(v.toFixed(6)));
+}
+
 function refreshSettings() {
   const s = studio.state.settings;
   settingsModel.step = s.step;
   settingsModel.stature = s.stature;
   const step = settingsGui.folders[0].controllers[0];
-  step.min(s.limits.step[0]).max(s.limits.step[1]);
+  const [low, high] = roundedInward(s.limits.step, 0.005);
+  step.min(low).max(high);
   for (const folder of settingsGui.folders) for (const c of folder.controllers) c.updateDisplay();
 }
 

@@ -224,7 +224,9 @@ try {
   await step.fill('0.6');
   await step.press('Enter');
   await idle();
+  const commanded = await studio(() => window.studio.state.settings.step);
   const walked = await studio(() => window.studio.walk.gait.step_length);
+  check(commanded === 0.6, `the step length typed is the one commanded (${commanded} m)`);
   check(Math.abs(walked - 0.6) < 0.03, `the walk takes the step length typed (${walked.toFixed(3)} m)`);
   await step.fill('0.7');
   await step.press('Enter');
