@@ -11,12 +11,14 @@ packages=(
   # libraries (MIT/BSD/Apache: may be linked into the library and the program)
   libeigen3-dev nlohmann-json3-dev libcli11-dev libceres-dev
   libtinygltf-dev                  # glTF export (MIT; a shared library, pulls in libstb0)
+  libcpp-httplib-dev               # the studio's HTTP server (MIT; pulls in OpenSSL, zlib, Brotli)
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # GPL reference oracle: linked only by the tests and by fuzzygait-bench
   libfuzzylite-dev fuzzylite
-  # BVH import check with three.js (npm lock file in tests/js)
+  # the studio's page (npm lock file in studio/), the BVH and glTF import checks (tests/js)
   nodejs npm
+  chromium                         # the studio's browser test (tests/studio), headless
   # the mocap reader's reference extractor (tests/tools/bvh_sagittal.py), run by the tests
   python3
 )

@@ -39,5 +39,7 @@ void add_tune_terrain_command(CLI::App& app);
 void add_walk_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_mocap_command(CLI::App& app);
+// `fuzzygait studio` (studio_command.cpp), in builds with the studio (FUZZYGAIT_STUDIO).
+void add_studio_command(CLI::App& app);
 
 }  // namespace fuzzygait::cli

@@ -13,6 +13,9 @@ int main(int argc, char** argv) {
   fuzzygait::cli::add_fuzzy_command(app);
   fuzzygait::cli::add_tune_command(app);
   fuzzygait::cli::add_tune_terrain_command(app);
+#ifdef FUZZYGAIT_HAVE_STUDIO
+  fuzzygait::cli::add_studio_command(app);
+#endif
   int status = 0;
   try {
     app.parse(argc, argv);

@@ -1,11 +1,19 @@
-# CTest fixture: installs tests/js's npm packages (three.js and gltf-validator, pinned by
-# package-lock.json) into the build tree with `npm ci`, once: it runs again only when the lock
-# file changes.
-# Without npm, or when npm ci fails (offline and not in npm's cache), it says so and counts as
-# skipped; the tests that need the packages then skip too.
-#   cmake -DNPM=<npm or empty> -DDIR=<folder with package.json and package-lock.json> -P npm_ci.cmake
+# Installs a folder's npm packages (pinned by its package-lock.json) with `npm ci`, once: it runs
+# again only when the lock file changes (the lock's SHA-256 is kept in node_modules).
+#   cmake -DNPM=<npm or empty> -DDIR=<folder with package.json and package-lock.json>
+#         [-DREQUIRED=ON] -P NpmCi.cmake
+# As a CTest fixture (tests/js, tests/studio): without npm, or when npm ci fails (offline and not
+# in npm's cache), it says so and counts as skipped; the tests that need the packages then skip
+# too. With REQUIRED (the studio's front end, which the build embeds) either is an error.
+function(npm_ci_give_up message)
+  if(REQUIRED)
+    message(FATAL_ERROR "${message}")
+  endif()
+  message("npm ci skipped: ${message}")
+endfunction()
+
 if(NOT NPM)
-  message("npm ci skipped: npm was not found when CMake configured (scripts/install-deps.sh)")
+  npm_ci_give_up("npm was not found when CMake configured (scripts/install-deps.sh)")
   return()
 endif()
 file(SHA256 "${DIR}/package-lock.json" lock_hash)
@@ -25,7 +33,7 @@ execute_process(COMMAND "${NPM}" ci --prefer-offline --no-audit --no-fund --fetc
 string(TIMESTAMP end "%s")
 math(EXPR seconds "${end} - ${start}")
 if(NOT result EQUAL 0)
-  message("npm ci skipped: `npm ci` in ${DIR} failed (${result}) after ${seconds} s; offline?")
+  npm_ci_give_up("`npm ci` in ${DIR} failed (${result}) after ${seconds} s; offline?")
   return()
 endif()
 file(WRITE "${stamp}" "${lock_hash}")

@@ -1,0 +1,467 @@
+#include "set_view.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+
+#include "fuzzygait/fuzzy/evaluator.hpp"
+#include "fuzzygait/fuzzy/partition.hpp"
+#include "fuzzygait/rig/rig.hpp"
+#include "request.hpp"
+#include "runtime/common/format.hpp"
+
+namespace fuzzygait::studio::detail {
+namespace {
+
+using common::number_text;
+using nlohmann::json;
+
+constexpr std::array<const char*, gait::kGroundCount> kGroundNames = {"slopes", "stairs"};
+// Points along a one-input controller's output curve and a membership function drawn from
+// samples; rows and columns of a two-input controller's output grid.
+constexpr int kCurveSamples = 101;
+constexpr int kGridSamples = 31;
+
+// JSON has no infinities: an unbounded end of a range is null.
+json finite_or_null(double x) {
+  return std::isfinite(x) ? json(x) : json(nullptr);
+}
+
+// The span of x the page draws for an input: its range, or where its terms lie when the range is
+// unbounded.
+std::pair<double, double> input_domain(const fuzzy::InputVariable& v) {
+  double low = v.minimum;
+  double high = v.maximum;
+  if (std::isfinite(low) && std::isfinite(high) && low < high) return {low, high};
+  double term_low = INFINITY;
+  double term_high = -INFINITY;
+  for (const fuzzy::Term& t : v.terms) {
+    for (double p : t.parameters) {
+      if (!std::isfinite(p)) continue;
+      term_low = std::min(term_low, p);
+      term_high = std::max(term_high, p);
+    }
+  }
+  if (!std::isfinite(low)) low = std::isfinite(term_low) ? term_low : -1.0;
+  if (!std::isfinite(high)) high = std::isfinite(term_high) ? term_high : 1.0;
+  if (!(low < high)) high = low + 1.0;
+  return {low, high};
+}
+
+double lerp(double low, double high, int i, int count) {
+  return low + (high - low) * static_cast<double>(i) / static_cast<double>(count - 1);
+}
+
+json term_json(const fuzzy::Term& t) {
+  json term = {{"name", t.name},
+               {"shape", fuzzy::shape_info(t.kind).name},
+               {"parameters", t.parameters},
+               {"height", t.height}};
+  if (t.kind == fuzzy::TermKind::Function) term["formula"] = t.formula;
+  return term;
+}
+
+// The controller's output with its inputs at x0 (and x1), the other metrics 0, to a thousandth
+// (it is drawn, and an edit's answer carries a two-input controller's 961 of them).
+double respond(const gait::Controller& c, fuzzy::Workspace& workspace, double x0, double x1) {
+  gait::MetricValues metrics{};
+  metrics[static_cast<std::size_t>(c.input(0))] = x0;
+  if (c.input_count() == 2) metrics[static_cast<std::size_t>(c.input(1))] = x1;
+  const double y = c.evaluate(metrics, workspace);
+  return std::isfinite(y) ? std::round(y * 1e3) / 1e3 : 0.0;
+}
+
+json response_json(const gait::Controller& c) {
+  fuzzy::Workspace workspace = c.make_workspace();
+  const auto [x0, x1] = input_domain(c.engine().inputs[0]);
+  if (c.input_count() == 1) {
+    std::vector<double> xs;
+    std::vector<double> ys;
+    for (int i = 0; i < kCurveSamples; ++i) {
+      xs.push_back(lerp(x0, x1, i, kCurveSamples));
+      ys.push_back(respond(c, workspace, xs.back(), 0.0));
+    }
+    return {{"x", xs}, {"y", ys}};
+  }
+  const auto [y0, y1] = input_domain(c.engine().inputs[1]);
+  std::vector<double> xs;
+  std::vector<double> ys;
+  for (int i = 0; i < kGridSamples; ++i) {
+    xs.push_back(lerp(x0, x1, i, kGridSamples));
+    ys.push_back(lerp(y0, y1, i, kGridSamples));
+  }
+  json rows = json::array();  // rows[j][i]: output at xs[i], ys[j]
+  for (double y : ys) {
+    std::vector<double> row;
+    for (double x : xs)
+      row.push_back(respond(c, workspace, x, y));
+    rows.push_back(row);
+  }
+  return {{"x", xs}, {"y", ys}, {"z", rows}};
+}
+
+json inputs_json(const gait::Controller& c,
+                 const std::optional<fuzzy::PartitionController<double>>& partition) {
+  const fuzzy::Engine& engine = c.engine();
+  std::optional<fuzzy::Evaluator> evaluator;
+  std::optional<fuzzy::Workspace> workspace;
+  json inputs = json::array();
+  for (std::size_t i = 0; i < engine.inputs.size(); ++i) {
+    const fuzzy::InputVariable& v = engine.inputs[i];
+    const auto [low, high] = input_domain(v);
+    json input = {{"name", v.name},
+                  {"description", v.description},
+                  {"range", {finite_or_null(v.minimum), finite_or_null(v.maximum)}},
+                  {"domain", {low, high}},
+                  {"partition", partition.has_value()}};
+    if (partition) input["knots"] = partition->knots[i];
+    json terms = json::array();
+    for (std::size_t t = 0; t < v.terms.size(); ++t) {
+      json term = term_json(v.terms[t]);
+      if (v.terms[t].kind != fuzzy::TermKind::Triangle) {
+        // Shapes other than triangles are drawn from samples of the engine's own membership.
+        if (!evaluator) {
+          evaluator.emplace(engine);
+          workspace.emplace(evaluator->make_workspace());
+        }
+        std::vector<double> ys;
+        for (int k = 0; k < kCurveSamples; ++k) {
+          ys.push_back(
+              evaluator->input_membership(i, t, lerp(low, high, k, kCurveSamples), *workspace));
+        }
+        term["samples"] = ys;
+      }
+      terms.push_back(term);
+    }
+    input["terms"] = terms;
+    inputs.push_back(input);
+  }
+  return inputs;
+}
+
+json output_json(const fuzzy::OutputVariable& out) {
+  json words = json::array();
+  json others = json::array();
+  for (const fuzzy::Term& t : out.terms) {
+    if (t.kind == fuzzy::TermKind::Constant) {
+      words.push_back({{"name", t.name}, {"value", t.parameters.at(0)}});
+    } else {
+      others.push_back(term_json(t));
+    }
+  }
+  return {{"name", out.name},
+          {"description", out.description},
+          {"range", {finite_or_null(out.minimum), finite_or_null(out.maximum)}},
+          {"words", words},
+          {"terms", others}};
+}
+
+// The rules as text, and for a partition the word each combination of terms answers with.
+json rules_json(const fuzzy::Engine& engine, bool partition) {
+  json rules = json::array();
+  for (const fuzzy::RuleBlock& block : engine.rule_blocks) {
+    for (const fuzzy::Rule& rule : block.rules)
+      rules.push_back(rule.text());
+  }
+  json result = {{"text", rules}};
+  if (partition) {
+    // as_partition holds the rules in row order: the first input's terms down, the second's
+    // across.
+    const std::size_t columns = engine.inputs.size() == 2 ? engine.inputs[1].terms.size() : 1;
+    json grid = json::array();
+    const std::vector<fuzzy::Rule>& block = engine.rule_blocks.at(0).rules;
+    for (std::size_t r = 0; r < block.size(); ++r) {
+      if (r % columns == 0) grid.push_back(json::array());
+      grid.back().push_back(block[r].conclusions.at(0).term);
+    }
+    result["grid"] = grid;
+  }
+  return result;
+}
+
+std::string title(const ControllerPlace& place) {
+  std::string text(gait::slot_name(place.slot));
+  std::replace(text.begin(), text.end(), '_', ' ');
+  if (place.ground >= 0) {
+    text +=
+        std::string(", ") + kGroundNames[static_cast<std::size_t>(place.ground)] + " " + place.word;
+  }
+  return text;
+}
+
+fuzzy::InputVariable& find_input(fuzzy::Engine& engine, const std::string& name,
+                                 const std::string& controller) {
+  for (fuzzy::InputVariable& v : engine.inputs) {
+    if (v.name == name) return v;
+  }
+  std::string known;
+  for (const fuzzy::InputVariable& v : engine.inputs)
+    known += (known.empty() ? "" : ", ") + v.name;
+  throw RequestError(
+      422, "variable",
+      "'" + controller + "' has no input '" + name + "' (its inputs: " + known + ")");
+}
+
+// The variable (input or output) and term a request names.
+fuzzy::Term& find_term(fuzzy::Engine& engine, const std::string& variable, const std::string& term,
+                       const std::string& controller) {
+  std::vector<fuzzy::Term>* terms = nullptr;
+  for (fuzzy::InputVariable& v : engine.inputs) {
+    if (v.name == variable) terms = &v.terms;
+  }
+  for (fuzzy::OutputVariable& v : engine.outputs) {
+    if (v.name == variable) terms = &v.terms;
+  }
+  if (!terms) {
+    throw RequestError(422, "variable", "'" + controller + "' has no variable '" + variable + "'");
+  }
+  for (fuzzy::Term& t : *terms) {
+    if (t.name == term) return t;
+  }
+  std::string known;
+  for (const fuzzy::Term& t : *terms)
+    known += (known.empty() ? "" : ", ") + t.name;
+  throw RequestError(422, "term",
+                     "'" + variable + "' of '" + controller + "' has no term '" + term +
+                         "' (its terms: " + known + ")");
+}
+
+// Moves knot `index` of a strong triangular partition to `value`, keeping the partition: the
+// term peaking there and its neighbours' feet move with it; the end knots carry the input's
+// range (and their outer feet keep their distance).
+// Sets edited's subject, before and after.
+void move_knot(fuzzy::Engine& engine, const std::string& controller, const std::string& variable,
+               const json& request, Edited& edited) {
+  fuzzy::InputVariable& v = find_input(engine, variable, controller);
+  std::string why;
+  if (!fuzzy::as_partition(engine, &why)) {
+    throw RequestError(422, "knot",
+                       "'" + controller + "' is not a strong triangular partition (" + why +
+                           "): change its terms' parameters instead");
+  }
+  const std::size_t n = v.terms.size();
+  const auto index =
+      static_cast<std::size_t>(integer_field(request, "knot", 0, static_cast<int>(n) - 1));
+  const double value = number_field(request, "value");
+  const double low = index > 0 ? v.terms[index - 1].parameters[1] : -Limits::kLargestValue;
+  const double high = index + 1 < n ? v.terms[index + 1].parameters[1] : Limits::kLargestValue;
+  if (!(value > low && value < high)) {
+    throw RequestError(422, "value",
+                       "knot " + std::to_string(index) + " ('" + v.terms[index].name + "') of '" +
+                           variable + "' must lie between its neighbours' knots " +
+                           number_text(low) + " and " + number_text(high) + ", got " +
+                           number_text(value));
+  }
+  std::vector<double>& p = v.terms[index].parameters;
+  const double old = p[1];
+  const double shift = value - old;
+  p[1] = value;
+  if (index > 0) {
+    v.terms[index - 1].parameters[2] = value;
+  } else {
+    p[0] += shift;
+    v.minimum = value;
+  }
+  if (index + 1 < n) {
+    v.terms[index + 1].parameters[0] = value;
+  } else {
+    p[2] += shift;
+    v.maximum = value;
+  }
+  edited.subject = variable + " knot " + std::to_string(index) + " (" + v.terms[index].name + ")";
+  edited.before = old;
+  edited.after = value;
+}
+
+// The set's own numbers as the manifest spells them, with the manifest reader's ranges.
+struct SetParameter {
+  const char* name;
+  double low;
+  double high;
+  std::function<double(const gait::ControllerSet&)> get;
+  std::function<void(gait::ControllerSet&, double)> set;
+};
+
+const std::vector<SetParameter>& set_parameters() {
+  static const std::vector<SetParameter> parameters = {
+      {"inertia_s", 0.001, 1.0, [](const gait::ControllerSet& s) { return s.inertia; },
+       [](gait::ControllerSet& s, double v) { s.inertia = v; }},
+      {"pelvis_tilt_deg", -45.0, 45.0,
+       [](const gait::ControllerSet& s) { return rig::degrees(s.pelvis_tilt); },
+       [](gait::ControllerSet& s, double v) { s.pelvis_tilt = rig::radians(v); }},
+      {"swing_knee_reference_sweep_deg", 0.0, 180.0,
+       [](const gait::ControllerSet& s) { return rig::degrees(s.swing_knee_reference_sweep); },
+       [](gait::ControllerSet& s, double v) { s.swing_knee_reference_sweep = rig::radians(v); }},
+      {"shortest_step_leg_lengths", 0.1, 1.2,
+       [](const gait::ControllerSet& s) { return s.shortest_step; },
+       [](gait::ControllerSet& s, double v) { s.shortest_step = v; }},
+  };
+  return parameters;
+}
+
+ControllerPlace find_place(const gait::ControllerSet& set, const std::string& id) {
+  const std::vector<ControllerPlace> places = controller_places(set);
+  for (const ControllerPlace& p : places) {
+    if (p.id == id) return p;
+  }
+  throw RequestError(422, "controller",
+                     "the set has no controller '" + id +
+                         "' (a slot such as 'swing_knee', or a "
+                         "terrain word's such as 'stairs_swing_knee_up')");
+}
+
+}  // namespace
+
+std::string Edited::label(double from) const {
+  return subject + " " + number_text(from, 4) + " -> " + number_text(after, 4);
+}
+
+std::vector<ControllerPlace> controller_places(const gait::ControllerSet& set) {
+  std::vector<ControllerPlace> places;
+  for (int s = 0; s < gait::kSlotCount; ++s) {
+    places.push_back({std::string(gait::slot_name(s)), s, -1, {}, 0});
+  }
+  for (std::size_t g = 0; g < set.ground.size(); ++g) {
+    const gait::ControllerSet::GroundWords& words = set.ground[g];
+    if (words.empty()) continue;
+    for (int s = 0; s < gait::kSlotCount; ++s) {
+      for (std::size_t w = 0; w < words.words.size(); ++w) {
+        const int c = words.of_slot[static_cast<std::size_t>(s)][w];
+        if (c < 0) continue;
+        places.push_back({std::string(kGroundNames[g]) + "_" + std::string(gait::slot_name(s)) +
+                              "_" + words.words[w],
+                          s, static_cast<int>(g), words.words[w], static_cast<std::size_t>(c)});
+      }
+    }
+  }
+  return places;
+}
+
+const gait::Controller& controller_at(const gait::ControllerSet& set, const ControllerPlace& p) {
+  return p.ground < 0 ? set.controllers.at(static_cast<std::size_t>(p.slot))
+                      : set.terrain_controllers.at(p.terrain_index);
+}
+
+json controller_json(const gait::ControllerSet& set, const ControllerPlace& place) {
+  const gait::Controller& c = controller_at(set, place);
+  const fuzzy::Engine& engine = c.engine();
+  const std::optional<fuzzy::PartitionController<double>> partition = fuzzy::as_partition(engine);
+  json controller = {{"id", place.id},
+                     {"slot", gait::slot_name(place.slot)},
+                     {"title", title(place)},
+                     {"description", engine.description},
+                     {"inputs", inputs_json(c, partition)},
+                     {"outputs", json::array()},
+                     {"rules", rules_json(engine, partition.has_value())},
+                     {"response", response_json(c)}};
+  if (place.ground >= 0) {
+    controller["ground"] = kGroundNames[static_cast<std::size_t>(place.ground)];
+    controller["word"] = place.word;
+  }
+  for (const fuzzy::OutputVariable& out : engine.outputs)
+    controller["outputs"].push_back(output_json(out));
+  return controller;
+}
+
+json parameters_json(const gait::ControllerSet& set) {
+  json parameters = json::array();
+  for (const SetParameter& p : set_parameters()) {
+    parameters.push_back({{"name", p.name}, {"value", p.get(set)}, {"range", {p.low, p.high}}});
+  }
+  return parameters;
+}
+
+json set_json(const gait::ControllerSet& set) {
+  json terrain = json::array();
+  for (std::size_t g = 0; g < set.ground.size(); ++g) {
+    const gait::ControllerSet::GroundWords& words = set.ground[g];
+    if (words.empty()) continue;
+    json list = json::array();
+    for (std::size_t w = 0; w < words.words.size(); ++w) {
+      list.push_back({{"word", words.words[w]},
+                      {"incline_deg", words.peaks[w]},
+                      {"ascent", static_cast<bool>(words.ascent[w])},
+                      {"landing_knee_deg", rig::degrees(words.landing_knee[w])}});
+    }
+    terrain.push_back({{"ground", kGroundNames[g]}, {"words", list}});
+  }
+  json controllers = json::array();
+  for (const ControllerPlace& place : controller_places(set))
+    controllers.push_back(controller_json(set, place));
+  return {{"name", set.name},
+          {"description", set.description},
+          {"parameters", parameters_json(set)},
+          {"terrain", terrain},
+          {"controllers", controllers}};
+}
+
+Edited apply_edit(const gait::ControllerSet& set, const json& request) {
+  check_fields(request,
+               {"controller", "variable", "knot", "term", "parameter", "value", "set", "gesture"});
+  Edited edited{set, {}, {}, 0.0, 0.0};
+  if (const std::optional<std::string> name = optional_string(request, "set")) {
+    check_fields(request, {"set", "value", "gesture"});
+    for (const SetParameter& p : set_parameters()) {
+      if (*name != p.name) continue;
+      edited.before = p.get(set);
+      edited.after = number_field(request, "value", p.low, p.high);
+      p.set(edited.set, edited.after);
+      edited.subject = p.name;
+      return edited;
+    }
+    std::string known;
+    for (const SetParameter& p : set_parameters())
+      known += (known.empty() ? "" : ", ") + std::string(p.name);
+    throw RequestError(422, "set", "the set has no parameter '" + *name + "' (" + known + ")");
+  }
+  const ControllerPlace place = find_place(set, string_field(request, "controller"));
+  const gait::Controller& before = controller_at(set, place);
+  fuzzy::Engine engine = before.engine();
+  const std::string variable = string_field(request, "variable");
+  if (request.contains("knot")) {
+    check_fields(request, {"controller", "variable", "knot", "value", "gesture"});
+    move_knot(engine, place.id, variable, request, edited);
+  } else {
+    fuzzy::Term& term = find_term(engine, variable, string_field(request, "term"), place.id);
+    if (request.contains("parameter")) {
+      const int count = static_cast<int>(term.parameters.size());
+      if (count == 0) {
+        throw RequestError(422, "parameter",
+                           "term '" + term.name + "' has no numeric parameters (a formula)");
+      }
+      const auto i = static_cast<std::size_t>(integer_field(request, "parameter", 0, count - 1));
+      edited.before = term.parameters[i];
+      edited.after = term.parameters[i] = number_field(request, "value");
+      edited.subject = variable + " " + term.name + " " + fuzzy::parameter_label(term, i);
+    } else {
+      if (term.kind != fuzzy::TermKind::Constant) {
+        throw RequestError(422, "term",
+                           "'" + term.name + "' is a " +
+                               std::string(fuzzy::shape_info(term.kind).name) +
+                               " term, not a word with one value: name its 'parameter'");
+      }
+      edited.before = term.parameters.at(0);
+      edited.after = term.parameters[0] = number_field(request, "value");
+      edited.subject = variable + " " + term.name;
+    }
+  }
+  try {
+    gait::Controller changed(std::move(engine), before.source());
+    if (place.ground < 0) {
+      edited.set.controllers.at(static_cast<std::size_t>(place.slot)) = std::move(changed);
+    } else {
+      edited.set.terrain_controllers.at(place.terrain_index) = std::move(changed);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(422, "value", std::string("the controller would not work: ") + e.what());
+  }
+  edited.controller = place.id;
+  edited.subject = place.id + ": " + edited.subject;
+  return edited;
+}
+
+}  // namespace fuzzygait::studio::detail

@@ -1,0 +1,52 @@
+// A controller set as the page shows it, and the edits the page makes to it.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/gait/controllers.hpp"
+
+namespace fuzzygait::studio::detail {
+
+// Where a controller sits in a set. Its id is a slot's name ("swing_knee") or, for a terrain
+// word's own controller, GROUND_SLOT_WORD ("stairs_swing_knee_up"), the file name
+// io::save_controller_set gives it.
+struct ControllerPlace {
+  std::string id;
+  int slot = 0;
+  int ground = -1;  // gait::Ground, or -1 for the slot's own controller
+  std::string word;
+  std::size_t terrain_index = 0;  // into ControllerSet::terrain_controllers when ground >= 0
+};
+
+// Every controller of the set: the slots' in slot order, then the terrain words'.
+std::vector<ControllerPlace> controller_places(const gait::ControllerSet& set);
+const gait::Controller& controller_at(const gait::ControllerSet& set, const ControllerPlace& p);
+
+// The page's view of one controller: its inputs' terms (knots for strong triangular partitions,
+// samples of other shapes), its output words, its rules in plain text (and as a grid for a
+// partition), and its output over its inputs (a curve for one input, a grid for two).
+nlohmann::json controller_json(const gait::ControllerSet& set, const ControllerPlace& place);
+// The set's own numbers (the manifest's), in the manifest's units.
+nlohmann::json parameters_json(const gait::ControllerSet& set);
+// The whole set: name, description, parameters, terrain words and every controller.
+nlohmann::json set_json(const gait::ControllerSet& set);
+
+// An edit (Studio::edit's request) applied to a copy of `set`. Throws RequestError naming the
+// field when the request is malformed, names nothing in the set, or gives a value the set cannot
+// take (a knot past its neighbour, a value out of range, an engine that does not compile).
+struct Edited {
+  gait::ControllerSet set;
+  std::string controller;  // the id of the controller changed; empty for the set's parameters
+  std::string subject;     // the number changed: "swing_knee: delta knot 1 (center)"
+  double before;           // its value before and after the edit
+  double after;
+  // For the history: "swing_knee: delta knot 1 (center) 0.513 -> 0.6", from `from` (a drag's
+  // first value).
+  std::string label(double from) const;
+  std::string label() const { return label(before); }
+};
+Edited apply_edit(const gait::ControllerSet& set, const nlohmann::json& request);
+
+}  // namespace fuzzygait::studio::detail

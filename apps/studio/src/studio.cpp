@@ -1,0 +1,545 @@
+#include "fuzzygait/studio/studio.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+#include "fuzzygait/eval/evaluation.hpp"
+#include "fuzzygait/gait/walker.hpp"
+#include "fuzzygait/io/bvh.hpp"
+#include "fuzzygait/io/controller_files.hpp"
+#include "fuzzygait/io/gltf.hpp"
+#include "fuzzygait/io/normative.hpp"
+#include "fuzzygait/io/terrain_spec.hpp"
+#include "fuzzygait/io/walk_csv.hpp"
+#include "request.hpp"
+#include "runtime/common/format.hpp"
+#include "set_view.hpp"
+#include "walk_view.hpp"
+
+namespace fuzzygait::studio {
+
+using common::number_text;
+using nlohmann::json;
+
+RequestError::RequestError(int status, std::string field, const std::string& message)
+    : std::invalid_argument(message), status_(status), field_(std::move(field)) {}
+
+json RequestError::to_json() const {
+  return {{"error", what()}, {"field", field_}, {"status", status_}};
+}
+
+namespace {
+
+// The grounds offered by name: level, ramps and stairs both ways, a kerb, a hill.
+const std::vector<std::pair<std::string, std::string>>& builtin_terrains() {
+  static const std::vector<std::pair<std::string, std::string>> terrains = {
+      {"flat", "level ground"},
+      {"slope:8", "ramp up 8 deg"},
+      {"slope:-8", "ramp down 8 deg"},
+      {"stairs:0.17:0.28:6", "6 stairs up, 0.17 x 0.28 m"},
+      {"stairs:-0.17:0.28:6", "6 stairs down, 0.17 x 0.28 m"},
+      {"stairs:0.15:0.30:1+flat:2+stairs:-0.15:0.30:1", "a kerb up and down, 0.15 m"},
+      {"slope:5:3+flat:2+slope:-5:3", "a hill, 5 deg up and down"},
+  };
+  return terrains;
+}
+
+// A request may name any spec but profile files: reading files is for whoever starts the studio
+// (StudioOptions::terrains).
+terrain::Terrain parse_terrain(const std::string& spec, const std::vector<std::string>& offered) {
+  const bool offered_spec = std::find(offered.begin(), offered.end(), spec) != offered.end();
+  if (!offered_spec && spec.find("profile") != std::string::npos) {
+    throw RequestError(422, "terrain",
+                       "terrain: profile files are opened only from the command line "
+                       "(fuzzygait studio --terrain SPEC)");
+  }
+  try {
+    return io::terrain_from_spec(spec, "terrain");
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(422, "terrain", e.what());
+  }
+}
+
+// The steps (metres) these legs and this set walk.
+std::pair<double, double> step_range(const gait::ControllerSet& set, double stature) {
+  const rig::Segments segments = rig::segments_from_stature(stature);
+  return {gait::Walker::min_step_length(set, segments), gait::Walker::max_step_length(segments)};
+}
+
+}  // namespace
+
+struct Studio::Session {
+  // The set last opened, as it was opened (the compare choice "opened").
+  struct Opened {
+    std::string id;
+    std::string label;
+    std::shared_ptr<const gait::ControllerSet> set;
+  };
+  struct Step {
+    gait::ControllerSet set;  // the set before the step
+    std::string label;        // what the step did
+    Opened opened;            // the set opened before the step
+  };
+  struct Compared {
+    std::string id;
+    std::string label;
+    gait::ControllerSet set;
+    std::shared_ptr<const gait::ControllerSet> set_source;  // for "opened", the set opened
+    std::optional<detail::Walked> walked;
+    std::optional<json> view;
+  };
+
+  StudioOptions options;
+  gait::ControllerSet current;
+  Opened opened;
+  std::vector<Step> undo;
+  std::vector<Step> redo;
+  std::string gesture;          // of the last edit, while the next edit may join it
+  std::string gesture_subject;  // what that gesture changes, and its value before it began
+  double gesture_from = 0.0;
+  detail::WalkSettings settings;
+  terrain::Terrain ground = terrain::Terrain::flat();
+  eval::Normative reference;
+  std::optional<detail::Walked> walked;
+  std::optional<json> walk_view;
+  std::optional<Compared> compared;
+
+  std::vector<std::string> offered_terrains() const {
+    std::vector<std::string> specs;
+    for (const auto& [spec, label] : builtin_terrains())
+      specs.push_back(spec);
+    specs.insert(specs.end(), options.terrains.begin(), options.terrains.end());
+    return specs;
+  }
+
+  // The set an id names, with a label for people; throws RequestError naming `field`.
+  std::pair<gait::ControllerSet, std::string> load(const std::string& id,
+                                                   const std::string& field) const {
+    const auto colon = id.find(':');
+    const std::string kind = id.substr(0, colon);
+    const std::string name = colon == std::string::npos ? "" : id.substr(colon + 1);
+    try {
+      if (kind == "style") {
+        const std::vector<std::string> styles = gait::ControllerSet::builtin_names();
+        if (std::find(styles.begin(), styles.end(), name) != styles.end()) {
+          return {gait::ControllerSet::builtin(name), name + " (shipped style)"};
+        }
+      } else if (kind == "folder") {
+        for (std::size_t i = 0; i < options.folders.size(); ++i) {
+          if (name != std::to_string(i)) continue;
+          gait::ControllerSet set = gait::ControllerSet::load(options.folders[i]);
+          std::string label = set.name + " (" + options.folders[i].string() + ")";
+          return {std::move(set), std::move(label)};
+        }
+      } else if (kind == "saved" && detail::is_plain_name(name) &&
+                 std::filesystem::is_regular_file(options.workspace / name / "manifest.json")) {
+        return {gait::ControllerSet::load(options.workspace / name), name + " (saved)"};
+      }
+    } catch (const std::exception& e) {  // a folder changed on disk since it was listed
+      throw RequestError(422, field, "'" + id + "' does not load: " + e.what());
+    }
+    throw RequestError(422, field,
+                       "no set '" + id + "' (style:NAME, folder:N or saved:NAME; see 'sets')");
+  }
+
+  json sets() const {
+    json list = json::array();
+    for (const std::string& name : gait::ControllerSet::builtin_names()) {
+      list.push_back(
+          {{"id", "style:" + name}, {"label", name + " (shipped style)"}, {"kind", "style"}});
+    }
+    for (std::size_t i = 0; i < options.folders.size(); ++i) {
+      list.push_back({{"id", "folder:" + std::to_string(i)},
+                      {"label", options.folders[i].string()},
+                      {"kind", "folder"}});
+    }
+    std::error_code error;
+    std::vector<std::string> saved;
+    for (const auto& entry : std::filesystem::directory_iterator(options.workspace, error)) {
+      const std::string name = entry.path().filename().string();
+      if (detail::is_plain_name(name) &&
+          std::filesystem::is_regular_file(entry.path() / "manifest.json", error)) {
+        saved.push_back(name);
+      }
+    }
+    std::sort(saved.begin(), saved.end());
+    for (const std::string& name : saved) {
+      list.push_back({{"id", "saved:" + name}, {"label", name + " (saved)"}, {"kind", "saved"}});
+    }
+    return list;
+  }
+
+  json history() const {
+    return {{"undo", undo.size()},
+            {"redo", redo.size()},
+            {"undo_label", undo.empty() ? "" : undo.back().label},
+            {"redo_label", redo.empty() ? "" : redo.back().label}};
+  }
+
+  json settings_json() const {
+    const auto [low, high] = step_range(current, settings.stature);
+    return {{"step", settings.step},
+            {"stature", settings.stature},
+            {"cycles", settings.cycles},
+            {"terrain", settings.terrain},
+            {"reference", settings.reference},
+            {"limits",
+             {{"step", {low, high}},
+              {"stature", {Limits::kMinStature, Limits::kMaxStature}},
+              {"cycles", {Limits::kMinCycles, Limits::kMaxCycles}}}}};
+  }
+
+  void forget_walks() {
+    walked.reset();
+    walk_view.reset();
+    if (compared) {
+      compared->walked.reset();
+      compared->view.reset();
+    }
+  }
+
+  const json& current_walk() {
+    if (!walk_view) {
+      walked = detail::walk(current, settings, ground, reference);
+      walk_view = detail::walk_json(*walked, ground);
+    }
+    return *walk_view;
+  }
+
+  json compared_walk() {
+    if (!compared) return nullptr;
+    if (!compared->view) {
+      compared->walked = detail::walk(compared->set, settings, ground, reference);
+      compared->view = detail::walk_json(*compared->walked, ground);
+    }
+    return {{"id", compared->id}, {"label", compared->label}, {"walk", *compared->view}};
+  }
+
+  // Puts `set` in place of the current one as one step of the history.
+  void replace(gait::ControllerSet set, std::string label) {
+    undo.push_back({std::move(current), std::move(label), opened});
+    if (undo.size() > Limits::kHistory) undo.erase(undo.begin());
+    redo.clear();
+    gesture.clear();
+    current = std::move(set);
+    forget_walks();
+  }
+
+  // Undo (from undo to redo) or redo (the other way): the set of the step on top of `from`
+  // becomes the current one, which goes onto `to` with the step's label.
+  json step_through(std::vector<Step>& from, std::vector<Step>& to) {
+    Step step = std::move(from.back());
+    from.pop_back();
+    to.push_back({std::move(current), step.label, opened});
+    current = std::move(step.set);
+    set_opened(std::move(step.opened));
+    gesture.clear();
+    fit_step();
+    forget_walks();
+    return {{"set", detail::set_json(current)},
+            {"opened", opened_json()},
+            {"history", history()},
+            {"settings", settings_json()},
+            {"walk", current_walk()},
+            {"compare", compared_walk()}};
+  }
+
+  // A new set opened; a comparison with the set as opened follows it.
+  void set_opened(Opened next) {
+    opened = std::move(next);
+    if (compared && compared->id == "opened" && compared->set_source != opened.set) {
+      compared->set = *opened.set;
+      compared->set_source = opened.set;
+      compared->label = opened.label + " as opened";
+      compared->walked.reset();
+      compared->view.reset();
+    }
+  }
+
+  json opened_json() const { return {{"id", opened.id}, {"label", opened.label}}; }
+
+  // A step the set walks: the setting, or the nearest the set takes (a set whose shortest step
+  // is longer than the current one).
+  void fit_step() {
+    const auto [low, high] = step_range(current, settings.stature);
+    settings.step = std::clamp(settings.step, low, high);
+  }
+};
+
+Studio::Studio(StudioOptions options) : session_(std::make_unique<Session>()) {
+  Session& s = *session_;
+  s.options = std::move(options);
+  const StudioOptions& o = s.options;
+  if (!(o.stature >= Limits::kMinStature && o.stature <= Limits::kMaxStature)) {
+    throw std::invalid_argument("stature must be between " + number_text(Limits::kMinStature) +
+                                " and " + number_text(Limits::kMaxStature) + " m, got " +
+                                number_text(o.stature));
+  }
+  if (o.cycles < Limits::kMinCycles || o.cycles > Limits::kMaxCycles) {
+    throw std::invalid_argument("cycles must be between " + std::to_string(Limits::kMinCycles) +
+                                " and " + std::to_string(Limits::kMaxCycles));
+  }
+  for (const std::string& spec : o.terrains)
+    io::terrain_from_spec(spec, "--terrain");
+  s.settings = {o.step, o.stature, o.cycles, "flat", "schwartz2008_free"};
+  s.reference = io::load_normative(s.settings.reference);
+  if (!o.folders.empty()) {
+    s.current = gait::ControllerSet::load(o.folders.front());
+    s.opened.id = "folder:0";
+    s.opened.label = s.current.name + " (" + o.folders.front().string() + ")";
+    for (const std::filesystem::path& folder : o.folders)
+      gait::ControllerSet::load(folder);  // each must load now, not when first opened
+  } else {
+    s.current = gait::ControllerSet::builtin(o.style);
+    s.opened.id = "style:" + o.style;
+    s.opened.label = o.style + " (shipped style)";
+  }
+  s.opened.set = std::make_shared<const gait::ControllerSet>(s.current);
+  const auto [low, high] = step_range(s.current, o.stature);
+  if (!(o.step >= low && o.step <= high)) {
+    throw std::invalid_argument("step must be between " + number_text(low, 3) + " and " +
+                                number_text(high, 3) + " m for this set and stature, got " +
+                                number_text(o.step));
+  }
+}
+
+Studio::~Studio() = default;
+
+json Studio::state() const {
+  const Session& s = *session_;
+  json terrains = json::array();
+  for (const auto& [spec, label] : builtin_terrains())
+    terrains.push_back({{"spec", spec}, {"label", label}});
+  for (const std::string& spec : s.options.terrains)
+    terrains.push_back({{"spec", spec}, {"label", spec}});
+  return {{"set", detail::set_json(s.current)},
+          {"opened", s.opened_json()},
+          {"history", s.history()},
+          {"settings", s.settings_json()},
+          {"sets", s.sets()},
+          {"terrains", terrains},
+          {"references", io::builtin_normative_names()},
+          {"reference", detail::reference_json(s.reference)},
+          {"compare", s.compared ? json(s.compared->id) : json(nullptr)}};
+}
+
+json Studio::walk() {
+  Session& s = *session_;
+  return {{"walk", s.current_walk()}, {"compare", s.compared_walk()}};
+}
+
+json Studio::edit(const json& request) {
+  Session& s = *session_;
+  detail::Edited edited = detail::apply_edit(s.current, request);
+  try {
+    detail::check_walkable(edited.set, s.settings, s.ground);
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(422, "value", std::string("the set would not walk: ") + e.what());
+  }
+  const std::string gesture = detail::optional_string(request, "gesture").value_or("");
+  if (!gesture.empty() && gesture == s.gesture && !s.undo.empty() &&
+      edited.subject == s.gesture_subject) {
+    // The same drag: one step of the history from where the drag began.
+    s.undo.back().label = edited.label(s.gesture_from);
+    s.current = std::move(edited.set);
+    s.redo.clear();
+    s.forget_walks();
+  } else {
+    s.replace(std::move(edited.set), edited.label());
+    s.gesture_from = edited.before;
+    s.gesture_subject = edited.subject;
+  }
+  s.gesture = gesture;
+  json answer = {{"history", s.history()}, {"walk", s.current_walk()}};
+  if (edited.controller.empty()) {
+    answer["parameters"] = detail::parameters_json(s.current);
+  } else {
+    for (const detail::ControllerPlace& place : detail::controller_places(s.current)) {
+      if (place.id == edited.controller) {
+        answer["controller"] = detail::controller_json(s.current, place);
+      }
+    }
+  }
+  return answer;
+}
+
+json Studio::change_settings(const json& request) {
+  Session& s = *session_;
+  detail::check_fields(request, {"step", "stature", "terrain", "cycles", "reference"});
+  detail::WalkSettings next = s.settings;
+  next.stature =
+      detail::optional_number(request, "stature", Limits::kMinStature, Limits::kMaxStature)
+          .value_or(next.stature);
+  if (request.contains("cycles")) {
+    next.cycles = detail::integer_field(request, "cycles", Limits::kMinCycles, Limits::kMaxCycles);
+  }
+  const auto [low, high] = step_range(s.current, next.stature);
+  if (const std::optional<double> step = detail::optional_number(request, "step")) {
+    if (!(*step >= low && *step <= high)) {
+      throw RequestError(422, "step",
+                         "step must be between " + number_text(low, 3) + " and " +
+                             number_text(high, 3) +
+                             " m: this set's shortest step and the legs' reach at stature " +
+                             number_text(next.stature) + " m; got " + number_text(*step));
+    }
+    next.step = *step;
+  } else {
+    next.step = std::clamp(next.step, low, high);
+  }
+  std::optional<terrain::Terrain> ground;
+  if (const std::optional<std::string> spec = detail::optional_string(request, "terrain")) {
+    ground = parse_terrain(*spec, s.offered_terrains());
+    next.terrain = *spec;
+  }
+  std::optional<eval::Normative> reference;
+  if (const std::optional<std::string> name = detail::optional_string(request, "reference")) {
+    const std::vector<std::string> names = io::builtin_normative_names();
+    if (std::find(names.begin(), names.end(), *name) == names.end()) {
+      std::string known;
+      for (const std::string& n : names)
+        known += (known.empty() ? "" : ", ") + n;
+      throw RequestError(422, "reference", "no reference '" + *name + "' (" + known + ")");
+    }
+    reference = io::load_normative(*name);
+    next.reference = *name;
+  }
+  s.settings = next;
+  if (ground) s.ground = std::move(*ground);
+  if (reference) s.reference = std::move(*reference);
+  s.forget_walks();
+  json answer = {{"settings", s.settings_json()}, {"walk", s.current_walk()}};
+  if (s.compared) {
+    try {
+      detail::check_walkable(s.compared->set, s.settings, s.ground);
+    } catch (const std::invalid_argument& e) {
+      answer["compare_dropped"] = s.compared->label + " does not walk these settings: " + e.what();
+      s.compared.reset();
+    }
+  }
+  answer["compare"] = s.compared_walk();
+  if (reference) answer["reference"] = detail::reference_json(s.reference);
+  return answer;
+}
+
+json Studio::undo() {
+  Session& s = *session_;
+  if (s.undo.empty()) throw RequestError(409, "undo", "nothing to undo");
+  return s.step_through(s.undo, s.redo);
+}
+
+json Studio::redo() {
+  Session& s = *session_;
+  if (s.redo.empty()) throw RequestError(409, "redo", "nothing to redo");
+  return s.step_through(s.redo, s.undo);
+}
+
+json Studio::open(const json& request) {
+  Session& s = *session_;
+  detail::check_fields(request, {"set"});
+  const std::string id = detail::string_field(request, "set");
+  auto [set, label] = s.load(id, "set");
+  auto opened = std::make_shared<const gait::ControllerSet>(set);
+  s.replace(std::move(set), "open " + label);
+  s.set_opened({id, label, std::move(opened)});
+  s.fit_step();
+  s.forget_walks();
+  return {{"set", detail::set_json(s.current)},
+          {"opened", s.opened_json()},
+          {"history", s.history()},
+          {"settings", s.settings_json()},
+          {"walk", s.current_walk()},
+          {"compare", s.compared_walk()}};
+}
+
+json Studio::save(const json& request) {
+  Session& s = *session_;
+  detail::check_fields(request, {"name"});
+  const std::string name = detail::string_field(request, "name");
+  if (!detail::is_plain_name(name)) {
+    throw RequestError(422, "name",
+                       "a set's name is 1 to 64 letters, digits, '-' or '_' (it names a folder "
+                       "in the workspace), got '" +
+                           name + "'");
+  }
+  const std::filesystem::path folder = s.options.workspace / name;
+  gait::ControllerSet copy = s.current;
+  copy.name = name;
+  try {
+    // A set saved there before may have had terrain files this one has not.
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+      if (entry.path().extension() == ".fll") std::filesystem::remove(entry.path());
+    }
+    io::save_controller_set(copy, folder);
+  } catch (const std::exception& e) {
+    throw RequestError(500, "name", "cannot save to " + folder.string() + ": " + e.what());
+  }
+  return {{"saved", "saved:" + name}, {"folder", folder.string()}, {"sets", s.sets()}};
+}
+
+json Studio::compare(const json& request) {
+  Session& s = *session_;
+  detail::check_fields(request, {"with"});
+  const auto with = request.find("with");
+  if (with == request.end()) throw RequestError(400, "with", "'with' is missing");
+  if (with->is_null()) {
+    s.compared.reset();
+    return {{"compare", nullptr}};
+  }
+  const std::string id = detail::string_field(request, "with");
+  Session::Compared next;
+  next.id = id;
+  if (id == "opened") {
+    next.set = *s.opened.set;
+    next.set_source = s.opened.set;
+    next.label = s.opened.label + " as opened";
+  } else {
+    std::tie(next.set, next.label) = s.load(id, "with");
+  }
+  try {
+    detail::check_walkable(next.set, s.settings, s.ground);
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(422, "with", next.label + " does not walk these settings: " + e.what());
+  }
+  s.compared = std::move(next);
+  json answer = {{"compare", s.compared_walk()}};
+  // The compared set itself, once: the page draws its knots and words beside the current ones.
+  answer["compare"]["set"] = detail::set_json(s.compared->set);
+  return answer;
+}
+
+Download Studio::download(std::string_view filename) {
+  Session& s = *session_;
+  s.current_walk();
+  const eval::Motion& motion = s.walked->motion;
+  std::ostringstream out;
+  Download d{std::string(filename), "text/csv; charset=utf-8", {}};
+  if (filename == "walk.csv") {
+    io::write_walk_csv(out, motion);
+  } else if (filename == "walk.bvh") {
+    d.content_type = "application/octet-stream";
+    io::write_bvh(out, motion);
+  } else if (filename == "walk.glb") {
+    d.content_type = "model/gltf-binary";
+    io::write_gltf(out, motion, s.ground);
+  } else if (filename == "walk.terrain.csv") {
+    double low = motion.frames.front().pose.pelvis.x;
+    double high = low;
+    for (const eval::Frame& f : motion.frames) {
+      low = std::min(low, f.pose.pelvis.x);
+      high = std::max(high, f.pose.pelvis.x);
+    }
+    io::write_terrain_csv(out, s.ground, low - 2.0, high + 2.0);
+  } else {
+    throw RequestError(404, "file",
+                       "no download '" + std::string(filename) +
+                           "' (walk.csv, walk.bvh, walk.glb, walk.terrain.csv)");
+  }
+  d.bytes = std::move(out).str();
+  return d;
+}
+
+}  // namespace fuzzygait::studio

@@ -1,0 +1,215 @@
+#include "walk_view.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "fuzzygait/eval/terrain_report.hpp"
+#include "fuzzygait/gait/walker.hpp"
+#include "fuzzygait/rig/rig.hpp"
+
+namespace fuzzygait::studio::detail {
+namespace {
+
+using nlohmann::json;
+
+// What the page needs and no more: a tenth of a millimetre, a hundredth of a degree.
+double rounded(double value, double scale) {
+  return std::isfinite(value) ? std::round(value * scale) / scale : 0.0;
+}
+double metres(double v) {
+  return rounded(v, 1e4);
+}
+double degrees(double radians) {
+  return rounded(rig::degrees(radians), 100.0);
+}
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+gait::WalkerOptions walker_options(const WalkSettings& settings) {
+  gait::WalkerOptions options;
+  options.segments = rig::segments_from_stature(settings.stature);
+  options.step_length = settings.step;
+  return options;
+}
+
+// Seconds a walk that stops short of its cycles is shown for: about as long as the cycles take.
+double stalled_duration(int cycles) {
+  return 1.2 * (cycles + 2);
+}
+
+json curve_json(const eval::Curve& curve, bool with_sd) {
+  json c = {{"mean", std::vector<double>(curve.mean.begin(), curve.mean.end())}};
+  if (with_sd) c["sd"] = std::vector<double>(curve.sd.begin(), curve.sd.end());
+  return c;
+}
+
+json score_json(const std::optional<eval::JointScore>& score) {
+  if (!score) return nullptr;
+  return {{"rmse", score->rmse}, {"pearson", score->pearson}, {"within_2sd", score->within_2sd}};
+}
+
+// A figure with its bound; `missed` when one of the bounds missed names it (each phrase of
+// missed_contact_bounds begins with or holds the figure's name).
+json figure(const char* name, double value, const char* unit, const char* bound,
+            const std::vector<std::string>& missed, const char* phrase) {
+  const bool miss = std::any_of(missed.begin(), missed.end(), [&](const std::string& m) {
+    return m.find(phrase) != std::string::npos;
+  });
+  return {{"name", name},
+          {"value", std::isfinite(value) ? json(value) : json(nullptr)},
+          {"unit", unit},
+          {"bound", bound},
+          {"missed", miss}};
+}
+
+}  // namespace
+
+void check_walkable(const gait::ControllerSet& set, const WalkSettings& settings,
+                    const terrain::Terrain& ground) {
+  gait::Walker walker(set, walker_options(settings), ground);
+}
+
+Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
+            const terrain::Terrain& ground, const eval::Normative& reference) {
+  Walked w;
+  const auto start = std::chrono::steady_clock::now();
+  const gait::WalkerOptions options = walker_options(settings);
+  {
+    gait::Walker walker(set, options, ground);
+    try {
+      w.motion = eval::record_cycles(walker, settings.cycles, kRecordFps);
+    } catch (const std::runtime_error& e) {
+      w.failure = e.what();
+    }
+  }
+  if (!w.failure.empty()) {
+    gait::Walker walker(set, options, ground);
+    w.motion = eval::record(walker, stalled_duration(settings.cycles), kRecordFps);
+  }
+  w.walk_ms = milliseconds_since(start);
+
+  const auto measuring = std::chrono::steady_clock::now();
+  try {
+    w.report = eval::evaluate(w.motion, ground, &reference, settings.step);
+  } catch (const std::invalid_argument& e) {
+    w.not_measured = e.what();
+  }
+  if (ground.level()) {
+    if (w.report) w.missed = eval::missed_contact_bounds(*w.report);
+    const std::optional<eval::GaitReport>& r = w.report;
+    w.figures =
+        json::array({figure("foot slip", r ? r->max_slip * 1e3 : NAN, "mm a frame", "< 1", w.missed,
+                            "foot slip"),
+                     figure("penetration", r ? r->max_penetration * 1e3 : NAN, "mm", "< 1",
+                            w.missed, "penetration"),
+                     figure("toe clearance", r ? r->min_toe_clearance * 1e3 : NAN, "mm", ">= 5",
+                            w.missed, "toe clearance"),
+                     figure("step error", r && r->step_error_percent ? *r->step_error_percent : NAN,
+                            "%", "<= 3", w.missed, "step error")});
+  } else {
+    // Off level ground every leg point counts, edges too (docs/measuring.md, "On terrain").
+    const eval::TerrainReport t = eval::evaluate_terrain(w.motion, ground);
+    w.missed = eval::missed_contact_bounds(t);
+    double slip = 0.0;
+    double penetration = 0.0;
+    for (const eval::PointContact& p : t.points) {
+      slip = std::max(slip, p.max_slip);
+      penetration = std::max(penetration, p.max_penetration);
+    }
+    w.figures = json::array(
+        {figure("slip", slip * 1e3, "mm a frame", "< 1", w.missed, "slip"),
+         figure("penetration", penetration * 1e3, "mm", "< 1", w.missed, "penetration"),
+         figure("swing clearance", t.min_swing_clearance * 1e3, "mm", ">= 10", w.missed,
+                "swing clearance"),
+         figure("step error",
+                w.report && w.report->step_error_percent ? *w.report->step_error_percent : NAN, "%",
+                "(level ground only)", {}, "")});
+  }
+  if (!w.failure.empty()) w.missed.insert(w.missed.begin(), w.failure);
+  w.measure_ms = milliseconds_since(measuring);
+  return w;
+}
+
+json walk_json(const Walked& walked, const terrain::Terrain& ground) {
+  const eval::Motion& m = walked.motion;
+  const auto stride = static_cast<std::size_t>(std::lround(m.fps / kPageFps));
+  std::vector<double> time;
+  std::vector<double> pelvis;  // x, y, tilt (deg)
+  std::vector<double> legs;    // left then right: hip, knee, ankle, heel, ball, tip as x, y
+  std::vector<int> contact;    // left, right
+  double low = m.frames.front().pose.pelvis.x;
+  double high = low;
+  for (std::size_t i = 0; i < m.frames.size(); i += stride) {
+    const eval::Frame& f = m.frames[i];
+    time.push_back(rounded(f.time, 1e4));
+    pelvis.insert(pelvis.end(),
+                  {metres(f.pose.pelvis.x), metres(f.pose.pelvis.y), degrees(f.pose.pelvis_tilt)});
+    for (std::size_t s = 0; s < 2; ++s) {
+      const rig::LegPoints& p = f.points[s];
+      for (const rig::Point& q : {p.hip, p.knee, p.ankle, p.heel, p.ball, p.tip}) {
+        legs.push_back(metres(q.x));
+        legs.push_back(metres(q.y));
+        low = std::min(low, q.x);
+        high = std::max(high, q.x);
+      }
+      contact.push_back(f.contact[s] ? 1 : 0);
+    }
+  }
+  json ground_points = json::array();
+  for (const rig::Point& p : ground.profile(low - 2.0, high + 2.0))
+    ground_points.push_back({metres(p.x), metres(p.y)});
+  const rig::Segments& s = m.segments;
+  json result = {{"frames",
+                  {{"fps", m.fps / static_cast<double>(stride)},
+                   {"count", time.size()},
+                   {"time", time},
+                   {"pelvis", pelvis},
+                   {"legs", legs},
+                   {"contact", contact}}},
+                 {"segments",
+                  {{"thigh", s.thigh},
+                   {"shank", s.shank},
+                   {"ankle_height", s.ankle_height},
+                   {"heel", s.heel},
+                   {"ball", s.ball},
+                   {"toe", s.toe}}},
+                 {"ground", ground_points},
+                 {"completed", walked.failure.empty()},
+                 {"warnings", walked.missed},
+                 {"figures", walked.figures},
+                 {"timing_ms", {{"walk", walked.walk_ms}, {"measure", walked.measure_ms}}}};
+  if (const std::optional<eval::GaitReport>& r = walked.report) {
+    result["curves"] = {{"thigh", curve_json(r->thigh, false)},
+                        {"knee", curve_json(r->knee, false)},
+                        {"ankle", curve_json(r->ankle, false)},
+                        {"toe", curve_json(r->toe, false)}};
+    result["scores"] = {{"thigh", score_json(r->thigh_score)},
+                        {"knee", score_json(r->knee_score)},
+                        {"ankle", score_json(r->ankle_score)}};
+    result["gait"] = {{"cycles", r->cycles},
+                      {"cycle_time", r->cycle_time},
+                      {"cadence", r->cadence},
+                      {"speed", r->speed},
+                      {"stance_percent", r->stance_percent},
+                      {"step_length", r->step_length},
+                      {"knee_peak", r->knee_peak},
+                      {"knee_peak_percent", r->knee_peak_percent}};
+  } else {
+    result["not_measured"] = walked.not_measured;
+  }
+  return result;
+}
+
+json reference_json(const eval::Normative& reference) {
+  return {{"name", reference.name},
+          {"thigh", curve_json(reference.thigh, true)},
+          {"knee", curve_json(reference.knee, true)},
+          {"ankle", curve_json(reference.ankle, true)}};
+}
+
+}  // namespace fuzzygait::studio::detail

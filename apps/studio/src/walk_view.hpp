@@ -1,0 +1,57 @@
+// Walking a set with the studio's settings, measuring the walk, and the page's view of it.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/eval/evaluation.hpp"
+#include "fuzzygait/eval/motion.hpp"
+#include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/terrain/terrain.hpp"
+
+namespace fuzzygait::studio::detail {
+
+struct WalkSettings {
+  double step = 0.70;
+  double stature = 1.75;
+  int cycles = 10;
+  std::string terrain = "flat";  // the spec
+  std::string reference = "schwartz2008_free";
+};
+
+// Frames a second the walk is recorded at (as `fuzzygait walk` writes it), and sent to the page,
+// which plays it interpolated: a quarter of the frames keeps an edit's answer small (about 60 KB
+// for 10 cycles), which is most of the time an edit takes to show in a browser that draws in
+// software; the chord of a point between two frames 1/30 s apart is within 1 % of its arc.
+inline constexpr double kRecordFps = 120.0;
+inline constexpr double kPageFps = 30.0;
+
+struct Walked {
+  eval::Motion motion;
+  // Why the walk stopped short of its cycles (it stumbled or stalled): then `motion` is what it
+  // walked in that time. Empty when it walked them all.
+  std::string failure;
+  std::optional<eval::GaitReport> report;  // none when not measured (`not_measured` says why)
+  std::string not_measured;
+  std::vector<std::string> missed;  // contact bounds missed, one phrase each
+  nlohmann::json figures;           // the contact figures with their bounds
+  double walk_ms = 0.0;             // wall time of the walk and of its measuring
+  double measure_ms = 0.0;
+};
+
+// Throws std::invalid_argument (the walker's or the rig's message) when the walker cannot be
+// made: a step shorter than the set walks or longer than the legs reach.
+void check_walkable(const gait::ControllerSet& set, const WalkSettings& settings,
+                    const terrain::Terrain& ground);
+
+Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
+            const terrain::Terrain& ground, const eval::Normative& reference);
+
+// The page's view: frames at kPageFps (time, pelvis, both legs' points, contacts),
+// the ground under the walk, the mean curves with their scores, the figures and the warnings.
+nlohmann::json walk_json(const Walked& walked, const terrain::Terrain& ground);
+nlohmann::json reference_json(const eval::Normative& reference);
+
+}  // namespace fuzzygait::studio::detail

@@ -1,0 +1,432 @@
+// Every controller of the set as an animator reads it: each input's terms as membership functions
+// labelled with their words, with a handle on every knot of a strong triangular partition to drag;
+// the output words as sliders; the controller's output over its inputs (a curve for one input, a
+// map for two); the rules in plain text and, for a partition, as a grid of words.
+import GUI from 'lil-gui';
+import { escapeHtml } from './curves.js';
+
+const SVG = 'http://www.w3.org/2000/svg';
+const WIDTH = 330;
+const HEIGHT = 118;
+const MARGIN = { left: 10, right: 10, top: 27, bottom: 22 };
+const LABEL_GAP = 34; // px between two words' labels on one row
+const TERM_COLOURS = ['#2f6db5', '#c0504d', '#4e9a4e', '#8064a2', '#d08a2c', '#3a9aa5', '#7a7a7a'];
+
+function svg(tag, attributes = {}, parent = null) {
+  const element = document.createElementNS(SVG, tag);
+  for (const [k, v] of Object.entries(attributes)) element.setAttribute(k, v);
+  if (parent) parent.append(element);
+  return element;
+}
+
+function readable(word) {
+  return word.replaceAll('_', ' ');
+}
+
+function niceNumber(v) {
+  const a = Math.abs(v);
+  if (a >= 100) return v.toFixed(0);
+  if (a >= 10) return v.toFixed(1);
+  if (a >= 1) return v.toFixed(2);
+  return v.toFixed(3);
+}
+
+// A term's membership at x for the shapes drawn exactly (Triangle); others come as samples.
+function trianglePoints(parameters, height) {
+  const [a, b, c] = parameters;
+  return [[a, 0], [b, height], [c, 0]];
+}
+
+// The knots of a strong triangular partition moved as the server moves them (set_view.cpp): the
+// neighbours' feet follow a middle knot; an end knot carries the range and its outer foot.
+export function moveKnot(input, index, value) {
+  const terms = input.terms;
+  const n = terms.length;
+  const p = terms[index].parameters;
+  const shift = value - p[1];
+  p[1] = value;
+  if (index > 0) terms[index - 1].parameters[2] = value;
+  else {
+    p[0] += shift;
+    input.range[0] = value;
+  }
+  if (index + 1 < n) terms[index + 1].parameters[0] = value;
+  else {
+    p[2] += shift;
+    input.range[1] = value;
+  }
+  input.knots[index] = value;
+}
+
+class MembershipPlot {
+  // `onDrag(index, value, phase, event)` is called as a knot is dragged (phase 'move', then 'end').
+  constructor(parent, controllerId, input, onDrag) {
+    this.controllerId = controllerId;
+    this.input = input;
+    this.onDrag = onDrag;
+    this.figure = document.createElement('figure');
+    this.figure.className = 'mf';
+    parent.append(this.figure);
+    this.svg = svg('svg', { viewBox: `0 0 ${WIDTH} ${HEIGHT}`, class: 'mf-plot' }, this.figure);
+    this.shapes = svg('g', {}, this.svg);
+    this.handles = svg('g', {}, this.svg);
+    const caption = document.createElement('figcaption');
+    caption.innerHTML = `<b>${escapeHtml(input.name)}</b> ${escapeHtml(input.description || '')}`;
+    this.figure.append(caption);
+    // The x span is fixed while the card lives, so a drag maps the pointer steadily.
+    const [low, high] = input.domain;
+    const pad = (high - low) * 0.06;
+    this.domain = [low - pad, high + pad];
+    this.ghost = null;
+    this.dragging = -1;
+    this.draw();
+  }
+
+  x(value) {
+    const [a, b] = this.domain;
+    return MARGIN.left + ((value - a) / (b - a)) * (WIDTH - MARGIN.left - MARGIN.right);
+  }
+  y(degree) {
+    return HEIGHT - MARGIN.bottom - degree * (HEIGHT - MARGIN.top - MARGIN.bottom);
+  }
+  value(clientX) {
+    const box = this.svg.getBoundingClientRect();
+    const px = ((clientX - box.left) / box.width) * WIDTH;
+    const [a, b] = this.domain;
+    return a + ((px - MARGIN.left) / (WIDTH - MARGIN.left - MARGIN.right)) * (b - a);
+  }
+
+  termPath(term) {
+    if (term.shape === 'Triangle') {
+      return trianglePoints(term.parameters, term.height).map(([x, y]) => `${this.x(x)},${this.y(y)}`);
+    }
+    if (term.samples) {
+      const [low, high] = this.input.domain;
+      return term.samples.map((y, i) => `${this.x(low + ((high - low) * i) / (term.samples.length - 1))},${this.y(y)}`);
+    }
+    return [];
+  }
+
+  draw() {
+    const input = this.input;
+    this.shapes.replaceChildren();
+    svg('rect', {
+      x: this.x(input.range[0] ?? this.domain[0]), y: MARGIN.top,
+      width: Math.max(0, this.x(input.range[1] ?? this.domain[1]) - this.x(input.range[0] ?? this.domain[0])),
+      height: HEIGHT - MARGIN.top - MARGIN.bottom, class: 'mf-range',
+    }, this.shapes);
+    svg('line', { x1: MARGIN.left, x2: WIDTH - MARGIN.right, y1: this.y(0), y2: this.y(0), class: 'mf-axis' }, this.shapes);
+    if (this.ghost) {
+      for (const term of this.ghost.terms) {
+        svg('polyline', { points: this.termPath(term).join(' '), class: 'mf-ghost' }, this.shapes);
+      }
+    }
+    // Words over their peaks, on a second row where two would overlap.
+    const rowEnds = [-Infinity, -Infinity];
+    const labels = input.terms.map((term, i) => {
+      const peak = term.shape === 'Triangle' ? term.parameters[1] : peakOfSamples(term, input.domain);
+      return { term, i, x: peak === null ? null : this.x(Math.min(Math.max(peak, this.domain[0]), this.domain[1])) };
+    });
+    input.terms.forEach((term, i) => {
+      const colour = TERM_COLOURS[i % TERM_COLOURS.length];
+      svg('polyline', { points: this.termPath(term).join(' '), stroke: colour, class: 'mf-term' }, this.shapes);
+    });
+    for (const { term, i, x } of [...labels].sort((a, b) => a.x - b.x)) {
+      if (x === null) continue;
+      const row = x - rowEnds[0] >= LABEL_GAP ? 0 : 1;
+      rowEnds[row] = x;
+      const label = svg('text', { x, y: row === 0 ? 10 : 21, fill: TERM_COLOURS[i % TERM_COLOURS.length], class: 'mf-word' }, this.shapes);
+      label.textContent = readable(term.name);
+    }
+    // Axis ticks: the range's ends and the knots' values, those too close to the last left out.
+    const ticks = input.partition ? input.knots : [input.range[0], input.range[1]].filter((v) => v !== null);
+    let lastTick = -Infinity;
+    for (const v of ticks) {
+      if (this.x(v) - lastTick < 28) continue;
+      lastTick = this.x(v);
+      const t = svg('text', { x: this.x(v), y: HEIGHT - 6, class: 'mf-tick' }, this.shapes);
+      t.textContent = niceNumber(v);
+    }
+    this.drawHandles();
+  }
+
+  drawHandles() {
+    if (!this.input.partition) {
+      this.handles.replaceChildren();
+      return;
+    }
+    const knots = this.input.knots;
+    while (this.handles.children.length > knots.length) this.handles.lastChild.remove();
+    while (this.handles.children.length < knots.length) this.addHandle(this.handles.children.length);
+    knots.forEach((k, i) => {
+      const handle = this.handles.children[i];
+      handle.setAttribute('cx', this.x(k));
+      handle.setAttribute('cy', this.y(1));
+      handle.classList.toggle('dragging', i === this.dragging);
+    });
+  }
+
+  addHandle(index) {
+    const handle = svg('circle', { r: 5.5, class: 'knot', tabindex: 0 }, this.handles);
+    handle.dataset.controller = this.controllerId;
+    handle.dataset.variable = this.input.name;
+    handle.dataset.knot = index;
+    const title = svg('title', {}, handle);
+    handle.addEventListener('pointerenter', () => {
+      title.textContent = `${readable(this.input.terms[index].name)} peaks at ${niceNumber(this.input.knots[index])}: ` +
+        'drag, or focus and press the arrow keys (Shift: finer)';
+    });
+    handle.addEventListener('pointerdown', (event) => {
+      event.preventDefault();
+      handle.setPointerCapture(event.pointerId);
+      handle.focus();
+      this.dragging = index;
+      this.moved = false;
+      this.drawHandles();
+    });
+    handle.addEventListener('pointermove', (event) => {
+      if (this.dragging !== index) return;
+      this.move(index, this.value(event.clientX), 'move', event);
+    });
+    const end = (event) => {
+      if (this.dragging !== index) return;
+      this.dragging = -1;
+      this.drawHandles();
+      // A click that moved nothing changes nothing.
+      if (this.moved) this.onDrag(index, this.input.knots[index], 'end', event);
+    };
+    handle.addEventListener('pointerup', end);
+    handle.addEventListener('pointercancel', end);
+    // A nudge a key press, each one step of the history: for knots too close to drag apart.
+    handle.addEventListener('keydown', (event) => {
+      if (event.key !== 'ArrowLeft' && event.key !== 'ArrowRight') return;
+      event.preventDefault();
+      const span = this.domain[1] - this.domain[0];
+      const step = (event.shiftKey ? 0.001 : 0.01) * span * (event.key === 'ArrowLeft' ? -1 : 1);
+      this.move(index, this.input.knots[index] + step, 'end', event);
+    });
+  }
+
+  move(index, wanted, phase, event) {
+    const value = this.clamp(index, wanted);
+    if (value === this.input.knots[index]) return;
+    moveKnot(this.input, index, value);
+    this.moved = true;
+    this.draw();
+    this.onDrag(index, value, phase, event);
+  }
+
+  // Between the neighbouring knots (a hair inside them), and within the plot.
+  clamp(index, value) {
+    const knots = this.input.knots;
+    const span = this.domain[1] - this.domain[0];
+    const gap = span * 0.004;
+    const low = index > 0 ? knots[index - 1] + gap : this.domain[0];
+    const high = index + 1 < knots.length ? knots[index + 1] - gap : this.domain[1];
+    const clamped = Math.min(Math.max(value, low), high);
+    // Three significant decimals of the span: values a person reads, as the tuner writes them.
+    const unit = 10 ** (Math.floor(Math.log10(span)) - 3);
+    return Math.round(clamped / unit) * unit;
+  }
+
+  // New data from the server; a knot being dragged keeps the pointer's value.
+  update(input) {
+    if (this.dragging >= 0) {
+      const held = this.input.knots[this.dragging];
+      this.input = input;
+      if (input.partition && input.knots[this.dragging] !== held) moveKnot(this.input, this.dragging, held);
+    } else {
+      this.input = input;
+    }
+    this.draw();
+  }
+}
+
+function peakOfSamples(term, domain) {
+  if (!term.samples) return null;
+  let best = 0;
+  term.samples.forEach((y, i) => {
+    if (y > term.samples[best]) best = i;
+  });
+  return domain[0] + ((domain[1] - domain[0]) * best) / (term.samples.length - 1);
+}
+
+// The controller's output over its inputs.
+function drawResponse(element, controller) {
+  const r = controller.response;
+  const unit = controller.outputs[0] ? controller.outputs[0].name : 'output';
+  if (!r.z) {
+    const s = svg('svg', { viewBox: `0 0 ${WIDTH} 70`, class: 'response-plot' });
+    const low = Math.min(...r.y);
+    const high = Math.max(...r.y);
+    const span = high - low || 1;
+    // Aligned with the membership plots above, whose span is the input's padded by 6 % a side.
+    const plotWidth = WIDTH - MARGIN.left - MARGIN.right;
+    const x = (i) => MARGIN.left + ((0.06 + i / (r.x.length - 1)) / 1.12) * plotWidth;
+    const y = (v) => 60 - ((v - low) / span) * 48;
+    if (low < 0 && high > 0) svg('line', { x1: MARGIN.left, x2: WIDTH - MARGIN.right, y1: y(0), y2: y(0), class: 'mf-axis' }, s);
+    svg('polyline', { points: r.y.map((v, i) => `${x(i)},${y(v)}`).join(' '), class: 'response-line' }, s);
+    const label = svg('text', { x: MARGIN.left, y: 10, class: 'mf-tick start' }, s);
+    label.textContent = `${unit} over ${controller.inputs[0].name}: ${niceNumber(low)} to ${niceNumber(high)}`;
+    element.replaceChildren(s);
+    return;
+  }
+  // Two inputs: a map, rows the second input upward, columns the first; blue negative, red positive.
+  const canvas = document.createElement('canvas');
+  canvas.width = r.x.length;
+  canvas.height = r.y.length;
+  canvas.className = 'response-map';
+  const ctx = canvas.getContext('2d');
+  let extent = 1e-9;
+  for (const row of r.z) for (const v of row) extent = Math.max(extent, Math.abs(v));
+  const image = ctx.createImageData(r.x.length, r.y.length);
+  r.z.forEach((row, j) => {
+    row.forEach((v, i) => {
+      const k = ((r.y.length - 1 - j) * r.x.length + i) * 4;
+      const t = v / extent;
+      const [red, green, blue] = t >= 0 ? [255, 255 * (1 - t), 255 * (1 - t)] : [255 * (1 + t), 255 * (1 + t), 255];
+      image.data.set([red, green, blue, 255], k);
+    });
+  });
+  ctx.putImageData(image, 0, 0);
+  const caption = document.createElement('div');
+  caption.className = 'response-caption';
+  caption.textContent = `${unit}: ${controller.inputs[0].name} across, ${controller.inputs[1].name} up; ` +
+    `red +${niceNumber(extent)}, blue −${niceNumber(extent)}`;
+  element.replaceChildren(canvas, caption);
+}
+
+function rulesHtml(controller) {
+  const rules = controller.rules;
+  let grid = '';
+  if (rules.grid && controller.inputs.length === 2) {
+    const words = Object.fromEntries(controller.outputs[0].words.map((w) => [w.name, w.value]));
+    const extent = Math.max(1e-9, ...Object.values(words).map(Math.abs));
+    const cell = (word) => {
+      const t = (words[word] ?? 0) / extent;
+      const colour = t >= 0 ? `rgba(220,80,70,${(0.55 * t).toFixed(2)})` : `rgba(60,110,200,${(-0.55 * t).toFixed(2)})`;
+      return `<td style="background:${colour}">${escapeHtml(readable(word))}</td>`;
+    };
+    const [a, b] = controller.inputs;
+    grid = `<table class="rule-grid"><tr><th>${escapeHtml(a.name)} \\ ${escapeHtml(b.name)}</th>${b.terms.map((t) => `<th>${escapeHtml(readable(t.name))}</th>`).join('')}</tr>
+      ${rules.grid.map((row, i) => `<tr><th>${escapeHtml(readable(a.terms[i].name))}</th>${row.map(cell).join('')}</tr>`).join('')}</table>`;
+  }
+  return `${grid}<ol class="rule-text">${rules.text.map((r) => `<li>${escapeHtml(r)}</li>`).join('')}</ol>`;
+}
+
+class ControllerCard {
+  constructor(parent, controller, handlers) {
+    this.handlers = handlers;
+    this.element = document.createElement('article');
+    this.element.className = 'controller';
+    this.element.dataset.controller = controller.id;
+    parent.append(this.element);
+    this.element.innerHTML = `<header><h3>${escapeHtml(controller.title)}</h3>
+      <p class="description">${escapeHtml(controller.description || '')}</p></header>
+      <div class="inputs"></div><div class="response"></div><div class="words"></div>
+      <details class="rules"><summary>${controller.rules.text.length} rules</summary><div></div></details>`;
+    this.data = controller;
+    this.plots = controller.inputs.map((input) => new MembershipPlot(
+      this.element.querySelector('.inputs'), controller.id, structuredClone(input),
+      (index, value, phase, event) => handlers.onKnot(controller.id, input.name, index, value, phase, event)));
+    this.buildWords(controller, null);
+    this.refresh(controller);
+  }
+
+  buildWords(controller, compared) {
+    if (this.gui) this.gui.destroy();
+    const out = controller.outputs[0];
+    this.words = {};
+    this.controllers = {};
+    if (!out || out.words.length === 0) return;
+    const box = this.element.querySelector('.words');
+    box.replaceChildren();
+    const caption = document.createElement('p');
+    caption.className = 'words-caption';
+    caption.innerHTML = `<b>${escapeHtml(out.name)}</b> ${escapeHtml(out.description || '')}`;
+    box.append(caption);
+    this.gui = new GUI({ container: box, title: `the words of ${out.name}`, width: WIDTH });
+    const finite = out.range.filter((v) => v !== null).map(Math.abs);
+    for (const word of out.words) {
+      this.words[word.name] = word.value;
+      const wide = Math.max(1, ...finite, ...out.words.map((w) => Math.abs(w.value) * 1.3));
+      const step = 10 ** (Math.floor(Math.log10(wide)) - 3);
+      // lil-gui counts steps from the slider's minimum: a whole number of steps keeps them round.
+      const base = Math.ceil(wide / step) * step;
+      const was = compared ? compared.outputs[0].words.find((w) => w.name === word.name) : null;
+      const label = readable(word.name) + (was && was.value !== word.value ? ` (was ${niceNumber(was.value)})` : '');
+      const c = this.gui.add(this.words, word.name, -base, base, step).name(label);
+      c.domElement.dataset.word = word.name;
+      c.onChange((value) => this.handlers.onWord(controller.id, out.name, word.name, value, 'move'));
+      c.onFinishChange((value) => this.handlers.onWord(controller.id, out.name, word.name, value, 'end'));
+      this.controllers[word.name] = c;
+    }
+  }
+
+  refresh(controller) {
+    this.data = controller;
+    drawResponse(this.element.querySelector('.response'), controller);
+    this.element.querySelector('.rules > div').innerHTML = rulesHtml(controller);
+  }
+
+  // The server's new view of this controller.
+  update(controller) {
+    controller.inputs.forEach((input, i) => this.plots[i].update(structuredClone(input)));
+    const out = controller.outputs[0];
+    if (out) {
+      for (const word of out.words) {
+        const c = this.controllers[word.name];
+        if (c && this.words[word.name] !== word.value && document.activeElement?.closest('.lil-gui') !== c.domElement.closest('.lil-gui')) {
+          this.words[word.name] = word.value;
+          c.updateDisplay();
+        }
+      }
+    }
+    this.refresh(controller);
+  }
+
+  setCompared(compared) {
+    this.plots.forEach((plot, i) => {
+      plot.ghost = compared ? compared.inputs[i] : null;
+      plot.draw();
+    });
+    this.buildWords(this.data, compared);
+  }
+}
+
+export class ControllerPanel {
+  constructor(container, handlers) {
+    this.container = container;
+    this.handlers = handlers;
+    this.cards = new Map();
+  }
+
+  render(set, compareSet) {
+    this.container.replaceChildren();
+    this.cards.clear();
+    const slots = set.controllers.filter((c) => !c.ground);
+    const terrain = set.controllers.filter((c) => c.ground);
+    for (const c of slots) this.cards.set(c.id, new ControllerCard(this.container, c, this.handlers));
+    if (terrain.length) {
+      const group = document.createElement('details');
+      group.className = 'terrain-words';
+      const words = set.terrain.map((g) => `${g.ground}: ${g.words.map((w) => `${w.word} ${w.incline_deg}°`).join(', ')}`).join('; ');
+      group.innerHTML = `<summary>Terrain words: ${terrain.length} controllers (${escapeHtml(words)})</summary>`;
+      this.container.append(group);
+      for (const c of terrain) this.cards.set(c.id, new ControllerCard(group, c, this.handlers));
+    }
+    this.setCompared(compareSet);
+  }
+
+  update(controller) {
+    const card = this.cards.get(controller.id);
+    if (card) card.update(controller);
+  }
+
+  setCompared(compareSet) {
+    for (const [id, card] of this.cards) {
+      const other = compareSet ? compareSet.controllers.find((c) => c.id === id) : null;
+      card.setCompared(other || null);
+    }
+  }
+}

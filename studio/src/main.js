@@ -1,0 +1,460 @@
+// The studio's page: builds the views from the server's state and walk, sends each edit as it is
+// made and redraws the curves, the figures and the character from the answer. docs/studio.md.
+import GUI from 'lil-gui';
+import * as api from './api.js';
+import { Clock, Motion } from './motion.js';
+import { View3D } from './view3d.js';
+import { SideView } from './sideview.js';
+import { Curves, renderFigures } from './curves.js';
+import { ControllerPanel } from './controllers.js';
+
+// What the page holds, and what the browser test reads: the latencies of edits from the input
+// event to the frame that shows their walk, the requests in flight, the errors shown.
+const studio = {
+  state: null,
+  walk: null,
+  compare: null, // {id, label, walk, set}
+  latencies: [],
+  errors: [],
+  redraws: 0,
+  ready: false,
+};
+window.studio = studio;
+// Stops the playback at t seconds (the browser test compares pictures at one instant); `play`
+// starts it again.
+studio.seek = (t) => {
+  clock.playing = false;
+  clock.t = t;
+};
+studio.play = () => {
+  clock.playing = true;
+};
+
+const $ = (selector) => document.querySelector(selector);
+const clock = new Clock();
+let view3d;
+let side;
+let curves;
+let panel;
+let settingsGui;
+let motion = null;
+let compareMotion = null;
+
+// ---- requests: one at a time, in order; a newer value of the same gesture replaces one waiting -
+
+let busy = false;
+const queue = []; // {path, body, apply, startedAt, key}
+const idleWaiters = [];
+
+// Resolves when no request is in flight or waiting (the browser test awaits it).
+studio.idle = () => new Promise((resolve) => {
+  if (!busy && queue.length === 0) resolve();
+  else idleWaiters.push(resolve);
+});
+
+let requestCount = 0;
+// `key` says which waiting request this one may replace: the same drag's edits, settings (merged).
+function request(path, body, apply, startedAt = performance.now(), key = `${path}#${++requestCount}`) {
+  const last = queue[queue.length - 1];
+  if (last && last.key === key) {
+    last.body = path === '/api/settings' ? { ...last.body, ...body } : body;
+    last.startedAt = startedAt;
+    return;
+  }
+  queue.push({ path, body, apply, startedAt, key });
+  if (!busy) next();
+}
+
+async function next() {
+  const item = queue.shift();
+  if (!item) {
+    while (idleWaiters.length) idleWaiters.shift()();
+    return;
+  }
+  busy = true;
+  const sent = performance.now();
+  try {
+    const answer = await api.post(item.path, item.body);
+    const received = performance.now();
+    item.apply(answer);
+    const applied = performance.now();
+    if (item.path === '/api/edit') {
+      requestAnimationFrame(() => {
+        studio.latencies.push({
+          total: performance.now() - item.startedAt,
+          server: answer.serverMs,
+          request: received - sent,
+          apply: applied - received,
+          cycles: studio.state.settings.cycles,
+        });
+      });
+    }
+  } catch (error) {
+    showError(error);
+    if (item.path === '/api/edit') await resync();
+  }
+  busy = false;
+  next();
+}
+
+let messageTimer = 0;
+function showMessage(text, kind = 'info') {
+  const box = $('#message');
+  box.textContent = text;
+  box.className = `visible ${kind}`;
+  clearTimeout(messageTimer);
+  messageTimer = setTimeout(() => (box.className = ''), kind === 'error' ? 7000 : 3500);
+}
+
+function showError(error) {
+  const text = error.field ? `${error.field}: ${error.message}` : error.message;
+  studio.errors.push(text);
+  showMessage(text, 'error');
+}
+
+// After a refused edit, the page shows the server's set again.
+async function resync() {
+  const state = await api.get('/api/state');
+  studio.state = state;
+  for (const c of state.set.controllers) panel.update(c);
+  refreshParameters();
+  updateHistory(state.history);
+}
+
+// ---- applying answers ------------------------------------------------------------------------
+
+function setWalk(walk, compare) {
+  studio.walk = walk;
+  motion = new Motion(walk);
+  if (compare !== undefined) {
+    studio.compare = compare ? { ...studio.compare, ...compare } : null;
+  }
+  compareMotion = studio.compare && studio.compare.walk ? new Motion(studio.compare.walk) : null;
+  view3d.setWalks(motion, compareMotion);
+  side.setWalks(motion, compareMotion);
+  curves.update(walk, compareMotion ? studio.compare.walk : null);
+  renderFigures($('#figures'), walk, compareMotion ? studio.compare.walk : null);
+  studio.redraws++;
+}
+
+function updateHistory(history) {
+  studio.state.history = history;
+  $('#undo').disabled = history.undo === 0;
+  $('#redo').disabled = history.redo === 0;
+  $('#undo').title = history.undo ? `Undo: ${history.undo_label}` : 'Nothing to undo';
+  $('#redo').title = history.redo ? `Redo: ${history.redo_label}` : 'Nothing to redo';
+  $('#history-label').textContent = history.undo ? `last: ${history.undo_label}` : '';
+}
+
+function replaceController(controller) {
+  const list = studio.state.set.controllers;
+  const i = list.findIndex((c) => c.id === controller.id);
+  if (i >= 0) list[i] = controller;
+  panel.update(controller);
+}
+
+function applyEdit(answer) {
+  if (answer.controller) replaceController(answer.controller);
+  if (answer.parameters) {
+    studio.state.set.parameters = answer.parameters;
+    refreshParameters();
+  }
+  updateHistory(answer.history);
+  setWalk(answer.walk);
+}
+
+// Open, undo and redo change the whole set.
+function applySet(answer) {
+  studio.state.set = answer.set;
+  const openedBefore = studio.state.opened.id;
+  if (answer.opened) studio.state.opened = answer.opened;
+  // The set as opened changed (an open, or its undo): a comparison with it draws its terms anew.
+  if (studio.compare && studio.compare.id === 'opened' && studio.state.opened.id !== openedBefore) {
+    compareWith('opened');
+  }
+  if (answer.settings) studio.state.settings = answer.settings;
+  updateHistory(answer.history);
+  renderSet();
+  setWalk(answer.walk, answer.compare === undefined ? undefined : answer.compare);
+  buildSettings();
+}
+
+function renderSet() {
+  const set = studio.state.set;
+  const opened = studio.state.opened.label;
+  $('#set-name').textContent = opened.startsWith(set.name) ? opened : `${set.name}: ${opened}`;
+  $('#set-description').textContent = set.description;
+  panel.render(set, studio.compare && studio.compare.set ? studio.compare.set : null);
+}
+
+// ---- edits -----------------------------------------------------------------------------------
+
+// A drag, a slide: one gesture, one step of the history. Its edits go out as the value moves; its
+// end sends the last value unless it went out already.
+let gestureCount = 0;
+const gestures = new Map(); // key -> {id, sent}
+function editInGesture(key, body, value, phase, startedAt) {
+  if (!gestures.has(key)) gestures.set(key, { id: `g${++gestureCount}`, sent: undefined });
+  const g = gestures.get(key);
+  if (phase === 'end') gestures.delete(key);
+  if (value === g.sent) return;
+  g.sent = value;
+  request('/api/edit', { ...body, value, gesture: g.id }, applyEdit, startedAt, g.id);
+}
+
+function onKnot(controller, variable, knot, value, phase, event) {
+  editInGesture(`${controller}/${variable}/${knot}`, { controller, variable, knot }, value, phase,
+    event ? event.timeStamp : performance.now());
+}
+
+function onWord(controller, variable, term, value, phase) {
+  editInGesture(`${controller}/${variable}/${term}`, { controller, variable, term }, value, phase,
+    performance.now());
+}
+
+function onSetParameter(name, value, phase) {
+  editInGesture(`set/${name}`, { set: name }, value, phase, performance.now());
+}
+
+function changeSettings(change) {
+  request('/api/settings', change, (answer) => {
+    studio.state.settings = answer.settings;
+    if (answer.reference) {
+      studio.state.reference = answer.reference;
+      curves.setReference(answer.reference);
+    }
+    if (answer.compare_dropped) showMessage(answer.compare_dropped, 'error');
+    setWalk(answer.walk, answer.compare);
+    refreshSettings();
+  }, performance.now(), 'settings');
+}
+
+function open(id) {
+  request('/api/open', { set: id }, (answer) => {
+    applySet(answer);
+    showMessage(`Opened ${answer.opened.label}`);
+  });
+}
+
+function compareWith(id) {
+  request('/api/compare', { with: id || null }, (answer) => {
+    studio.compare = answer.compare;
+    renderSet();
+    setWalk(studio.walk, answer.compare);
+  });
+}
+
+// ---- the settings panel (lil-gui) ------------------------------------------------------------
+
+const settingsModel = {};
+function buildSettings() {
+  if (settingsGui) settingsGui.destroy();
+  const state = studio.state;
+  const s = state.settings;
+  settingsGui = new GUI({ container: $('#settings'), title: 'Walk and set', width: 300 });
+  Object.assign(settingsModel, {
+    step: s.step,
+    stature: s.stature,
+    terrain: s.terrain,
+    cycles: s.cycles,
+    reference: s.reference,
+    speed: clock.speed,
+    playing: clock.playing,
+    set: state.opened.id,
+    style: 'default',
+  });
+  const walk = settingsGui.addFolder('Walk');
+  // lil-gui counts steps from the slider's minimum: a round minimum keeps the values round.
+  const [low, high] = roundedInward(s.limits.step, 0.005);
+  walk.add(settingsModel, 'step', low, high, 0.005).name('step length (m)')
+    .onChange((v) => changeSettings({ step: v }));
+  walk.add(settingsModel, 'stature', ...s.limits.stature, 0.01).name('stature (m)')
+    .onChange((v) => changeSettings({ stature: v }));
+  const terrains = Object.fromEntries(state.terrains.map((t) => [t.label, t.spec]));
+  if (!Object.values(terrains).includes(s.terrain)) terrains[s.terrain] = s.terrain;
+  walk.add(settingsModel, 'terrain', terrains).name('terrain')
+    .onChange((v) => changeSettings({ terrain: v }));
+  walk.add(settingsModel, 'cycles', ...s.limits.cycles, 1).name('gait cycles')
+    .onFinishChange((v) => changeSettings({ cycles: v }));
+  walk.add(settingsModel, 'reference', state.references).name('people (reference)')
+    .onChange((v) => changeSettings({ reference: v }));
+  walk.add(settingsModel, 'speed', 0.1, 2, 0.05).name('playback speed')
+    .onChange((v) => (clock.speed = v));
+  walk.add(settingsModel, 'playing').name('play').onChange((v) => (clock.playing = v));
+
+  const set = settingsGui.addFolder('Set');
+  const sets = Object.fromEntries(state.sets.map((x) => [x.label, x.id]));
+  if (!Object.values(sets).includes(state.opened.id)) sets[state.opened.label] = state.opened.id;
+  set.add(settingsModel, 'set', sets).name('open').onChange((v) => open(v));
+  const styles = state.sets.filter((x) => x.kind === 'style').map((x) => x.id.slice(6));
+  set.add(settingsModel, 'style', styles).name('shipped style');
+  set.add({ reset: () => open(`style:${settingsModel.style}`) }, 'reset').name('reset to the shipped style');
+  parameterGui = set.addFolder('The set’s own numbers');
+  buildParameters();
+  parameterGui.close();
+}
+
+let parameterGui = null;
+const parameterModel = {};
+const PARAMETER_LABELS = {
+  inertia_s: 'inertia (s)',
+  pelvis_tilt_deg: 'pelvic tilt (deg)',
+  swing_knee_reference_sweep_deg: 'knee reference sweep (deg)',
+  shortest_step_leg_lengths: 'shortest step (leg lengths)',
+};
+function buildParameters() {
+  for (const c of [...parameterGui.controllers]) c.destroy();
+  for (const p of studio.state.set.parameters) {
+    parameterModel[p.name] = p.value;
+    const span = p.range[1] - p.range[0];
+    parameterGui.add(parameterModel, p.name, p.range[0], p.range[1], 10 ** (Math.floor(Math.log10(span)) - 3))
+      .name(PARAMETER_LABELS[p.name] || p.name)
+      .onChange((v) => onSetParameter(p.name, v, 'move'))
+      .onFinishChange((v) => onSetParameter(p.name, v, 'end'));
+  }
+}
+function refreshParameters() {
+  for (const p of studio.state.set.parameters) parameterModel[p.name] = p.value;
+  for (const c of parameterGui.controllers) c.updateDisplay();
+}
+// [low, high] moved inward to multiples of `unit`.
+function roundedInward([low, high], unit) {
+  return [Math.ceil(low / unit - 1e-9) * unit, Math.floor(high / unit + 1e-9) * unit]
+    .map((v) => Number(v.toFixed(6)));
+}
+
+function refreshSettings() {
+  const s = studio.state.settings;
+  settingsModel.step = s.step;
+  settingsModel.stature = s.stature;
+  const step = settingsGui.folders[0].controllers[0];
+  const [low, high] = roundedInward(s.limits.step, 0.005);
+  step.min(low).max(high);
+  for (const folder of settingsGui.folders) for (const c of folder.controllers) c.updateDisplay();
+}
+
+// ---- the toolbar -----------------------------------------------------------------------------
+
+function buildCompareChoices() {
+  const select = $('#compare');
+  const current = studio.compare ? studio.compare.id : '';
+  const options = [['', 'nothing'], ['opened', 'this set as opened (before its edits)'],
+    ...studio.state.sets.map((s) => [s.id, s.label])];
+  select.replaceChildren(...options.map(([id, label]) => new Option(label, id, false, id === current)));
+}
+
+function wireToolbar() {
+  $('#undo').addEventListener('click', () => request('/api/undo', {}, applySet));
+  $('#redo').addEventListener('click', () => request('/api/redo', {}, applySet));
+  document.addEventListener('keydown', (event) => {
+    if (!(event.ctrlKey || event.metaKey) || event.key.toLowerCase() !== 'z') return;
+    if (event.target.closest('input')) return;
+    event.preventDefault();
+    if (event.shiftKey) $('#redo').click();
+    else $('#undo').click();
+  });
+  $('#compare').addEventListener('change', (event) => compareWith(event.target.value));
+  $('#save-form').addEventListener('submit', (event) => {
+    event.preventDefault();
+    const name = $('#save-name').value.trim();
+    request('/api/save', { name }, (answer) => {
+      studio.state.sets = answer.sets;
+      buildCompareChoices();
+      buildSettings();
+      showMessage(`Saved to ${answer.folder}`);
+      studio.saved = answer.saved;
+    });
+  });
+}
+
+// ---- start -----------------------------------------------------------------------------------
+
+// The time each view takes to draw a frame (ms), the last 120 frames: docs/studio.md quotes it.
+studio.frameMs = { view3d: [], side: [] };
+function timed(list, draw) {
+  const start = performance.now();
+  draw();
+  list.push(performance.now() - start);
+  if (list.length > 120) list.shift();
+}
+
+function frame() {
+  const t = motion ? clock.tick(motion.duration) : 0;
+  // Drawn in software, the views wait while a request is out: the rasteriser would take the
+  // processor from its answer, and they would only draw the walk it replaces (docs/studio.md,
+  // "Latency").
+  if (motion && !(busy && view3d.software)) {
+    timed(studio.frameMs.view3d, () => view3d.render(t));
+    timed(studio.frameMs.side, () => side.render(t));
+    curves.showCycle(motion.cyclePercent(t));
+  }
+  requestAnimationFrame(frame);
+}
+
+// Scrubbing: drag across the side view to move through the walk (it pauses); a double click, or
+// the space bar, plays it again; with the walk paused the arrow keys step a frame (1/30 s).
+function wirePlayback() {
+  const canvas = $('#side-canvas');
+  let from = null;
+  canvas.addEventListener('pointerdown', (event) => {
+    canvas.setPointerCapture(event.pointerId);
+    from = { x: event.clientX, t: clock.t };
+    clock.playing = false;
+    syncPlaying();
+  });
+  canvas.addEventListener('pointermove', (event) => {
+    if (!from || !motion) return;
+    // A pixel is as much time as the pelvis takes to cross it at the walk's speed.
+    const speed = (studio.walk.gait && studio.walk.gait.speed) || 1.3;
+    const t = from.t + (event.clientX - from.x) / side.scale / speed;
+    clock.t = Math.min(Math.max(t, 0), motion.duration);
+  });
+  const end = () => (from = null);
+  canvas.addEventListener('pointerup', end);
+  canvas.addEventListener('pointercancel', end);
+  canvas.addEventListener('dblclick', () => {
+    clock.playing = true;
+    syncPlaying();
+  });
+  document.addEventListener('keydown', (event) => {
+    if (event.target.closest('input, select, textarea, .knot')) return;
+    if (event.key === ' ') {
+      event.preventDefault();
+      clock.playing = !clock.playing;
+      syncPlaying();
+    } else if (!clock.playing && (event.key === 'ArrowLeft' || event.key === 'ArrowRight') && motion) {
+      event.preventDefault();
+      clock.t = Math.min(Math.max(clock.t + (event.key === 'ArrowLeft' ? -1 : 1) / 30, 0), motion.duration);
+    }
+  });
+}
+
+function syncPlaying() {
+  settingsModel.playing = clock.playing;
+  for (const folder of settingsGui.folders) for (const c of folder.controllers) c.updateDisplay();
+}
+
+async function start() {
+  view3d = new View3D($('#view3d'), $('#settings'));
+  side = new SideView($('#side-canvas'));
+  curves = new Curves($('#curves'));
+  panel = new ControllerPanel($('#controller-list'), { onKnot, onWord });
+  wireToolbar();
+  wirePlayback();
+  const [state, walk] = await Promise.all([api.get('/api/state'), api.get('/api/walk')]);
+  studio.state = state;
+  curves.setReference(state.reference);
+  if (walk.compare) studio.compare = walk.compare;
+  updateHistory(state.history);
+  renderSet();
+  buildSettings();
+  buildCompareChoices();
+  setWalk(walk.walk, walk.compare);
+  requestAnimationFrame(frame);
+  studio.ready = true;
+}
+
+start().catch((error) => {
+  showError(error);
+  console.error(error);
+});

@@ -1,0 +1,320 @@
+// The studio as a person uses it, in Debian's Chromium driven by playwright-core: starts
+// `fuzzygait studio`, loads the page over http, drags a knot and sees the knee curve and the walk
+// change, saves the set, reloads and finds the edit, resets to the shipped style and opens the
+// saved set again, compares it with the set as opened, walks it up stairs, downloads the glTF and
+// has the Khronos glTF-Validator check it, and measures the time from an edit's input event to the
+// frame that shows its new walk (10 gait cycles). Screenshots go to OUT_DIR.
+//
+//   node browser_test.mjs FUZZYGAIT_PROGRAM OUT_DIR [--max-median-ms N]
+//
+// Exits 0 when every check passes, 1 when one fails, 77 (CTest's skip) when Chromium or the npm
+// packages are missing, saying which.
+import { spawn } from 'node:child_process';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+
+const CHROMIUM = '/usr/bin/chromium';
+const [program, outDir, ...rest] = process.argv.slice(2);
+const maxMedian = rest[0] === '--max-median-ms' ? Number(rest[1]) : Infinity;
+if (!program || !outDir) {
+  console.error('usage: node browser_test.mjs FUZZYGAIT_PROGRAM OUT_DIR [--max-median-ms N]');
+  process.exit(2);
+}
+if (!existsSync(CHROMIUM)) {
+  console.log(`skipped: ${CHROMIUM} is not installed (scripts/install-deps.sh installs chromium)`);
+  process.exit(77);
+}
+let chromium;
+let validator;
+try {
+  ({ chromium } = await import('playwright-core'));
+  validator = (await import('gltf-validator')).default;
+} catch (error) {
+  console.log(`skipped: the npm packages are not installed (npm ci in tests/studio): ${error.message}`);
+  process.exit(77);
+}
+
+mkdirSync(outDir, { recursive: true });
+const failures = [];
+function check(condition, what) {
+  console.log(`${condition ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!condition) failures.push(what);
+}
+
+// ---- the program ------------------------------------------------------------------------------
+
+const workspace = mkdtempSync(join(tmpdir(), 'fuzzygait-studio-'));
+const server = spawn(program, ['studio', '--port', '0', '--workspace', workspace],
+  { stdio: ['ignore', 'pipe', 'pipe'] });
+let serverOutput = '';
+const address = await new Promise((resolve, reject) => {
+  const timer = setTimeout(() => reject(new Error(`no address printed: ${serverOutput}`)), 30000);
+  const read = (chunk) => {
+    serverOutput += chunk;
+    const match = /open (http:\/\/127\.0\.0\.1:\d+\/)/.exec(serverOutput);
+    if (match) {
+      clearTimeout(timer);
+      resolve(match[1]);
+    }
+  };
+  server.stdout.on('data', read);
+  server.stderr.on('data', read);
+  server.on('exit', (code) => reject(new Error(`fuzzygait studio exited (${code}): ${serverOutput}`)));
+});
+console.log(`fuzzygait studio at ${address}`);
+
+// ---- the browser ------------------------------------------------------------------------------
+
+const profile = mkdtempSync(join(tmpdir(), 'fuzzygait-chromium-'));
+const context = await chromium.launchPersistentContext(profile, {
+  executablePath: CHROMIUM,
+  headless: true,
+  acceptDownloads: true,
+  viewport: { width: 1600, height: 1000 },
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+const page = context.pages()[0] ?? await context.newPage();
+const pageErrors = [];
+page.on('pageerror', (error) => pageErrors.push(error.message));
+page.on('console', (message) => {
+  if (message.type() === 'error') pageErrors.push(message.text());
+});
+
+const studio = (expression) => page.evaluate(expression);
+const idle = async () => {
+  await page.evaluate(() => window.studio.idle());
+  // Two frames: the answer drawn, then painted.
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+};
+const knot = (controller, variable, index) =>
+  page.locator(`circle.knot[data-controller="${controller}"][data-variable="${variable}"][data-knot="${index}"]`);
+const knotValue = () => studio(() => window.studio.state.set.controllers
+  .find((c) => c.id === 'swing_knee').inputs[0].knots[1]);
+const kneeCurve = () => studio(() => window.studio.walk.curves.knee.mean);
+const shot = (name) => page.screenshot({ path: join(outDir, name) });
+const same = (a, b) => Buffer.compare(a, b) === 0;
+// A control of the settings panel by its label.
+const settingSelect = (name) => page.locator('#settings').getByLabel(name, { exact: true });
+
+async function load() {
+  await page.goto(address);
+  await page.waitForFunction(() => window.studio && window.studio.ready, null, { timeout: 30000 });
+  await idle();
+}
+
+try {
+  const loadStart = Date.now();
+  await load();
+  console.log(`page loaded and walked in ${Date.now() - loadStart} ms`);
+  check(await page.locator('circle.knot').count() > 20, 'every partition controller shows its knots');
+  check((await page.locator('.controller').count()) === 30, 'all 30 controllers of the default set are shown');
+  check((await page.locator('#figures').textContent()).includes('Every contact bound met'),
+    'the contact figures show the default walk meets its bounds');
+  await shot('studio_loaded.png');
+
+  // ---- drag a knot: the curve and the walk change ----
+  const knotBefore = await knotValue();
+  const curveBefore = await kneeCurve();
+  await studio(() => window.studio.seek(2.0));
+  await idle();
+  const sideBefore = await page.locator('#side-canvas').screenshot();
+  const chartBefore = await page.locator('.curve[data-joint="knee"]').screenshot();
+  const handle = knot('swing_knee', 'delta', 1);
+  await handle.scrollIntoViewIfNeeded();
+  const box = await handle.boundingBox();
+  const x0 = box.x + box.width / 2;
+  const y0 = box.y + box.height / 2;
+  await page.mouse.move(x0, y0);
+  await page.mouse.down();
+  for (let i = 1; i <= 8; i++) await page.mouse.move(x0 + i * 5, y0, { steps: 2 });
+  await page.mouse.up();
+  await idle();
+  const knotAfter = await knotValue();
+  const curveAfter = await kneeCurve();
+  check(knotAfter > knotBefore + 0.1, `the knot moved with the pointer (${knotBefore} -> ${knotAfter})`);
+  check(JSON.stringify(curveAfter) !== JSON.stringify(curveBefore), 'the knee curve changed');
+  await studio(() => window.studio.seek(2.0));
+  await idle();
+  check(!same(await page.locator('#side-canvas').screenshot(), sideBefore), 'the walk in the side view changed');
+  check(!same(await page.locator('.curve[data-joint="knee"]').screenshot(), chartBefore), 'the knee chart redrew');
+  const history = await studio(() => window.studio.state.history);
+  check(history.undo === 1, `the drag is one step of the history (${history.undo})`);
+  const handleAt = await handle.getAttribute('cx');
+  await studio(() => window.studio.play());
+  await shot('studio_dragged.png');
+
+  // ---- save, reload, find the edit ----
+  await page.fill('#save-name', 'browser_edit');
+  await page.click('#save-form button');
+  await idle();
+  const saved = join(workspace, 'browser_edit');
+  check(existsSync(join(saved, 'manifest.json')), 'Save wrote the set\'s folder');
+  const fll = existsSync(join(saved, 'swing_knee.fll')) ? readFileSync(join(saved, 'swing_knee.fll'), 'utf8') : '';
+  check(fll.includes(`term: center Triangle -1 ${knotAfter} 1.29`), 'the saved swing_knee.fll holds the moved knot');
+  await page.reload();
+  await page.waitForFunction(() => window.studio && window.studio.ready, null, { timeout: 30000 });
+  await idle();
+  check(await knotValue() === knotAfter, 'after a reload the page shows the edit');
+  check(await knot('swing_knee', 'delta', 1).getAttribute('cx') === handleAt,
+    'the moved knot is drawn where it was left');
+
+  // ---- reset to the shipped style, then open the saved set ----
+  await page.locator('#settings button', { hasText: 'reset to the shipped style' }).click();
+  await idle();
+  check(await knotValue() === 0.513, 'reset to the shipped style puts the knot back');
+  await settingSelect('open').selectOption({ label: 'browser_edit (saved)' });
+  await idle();
+  check(await knotValue() === knotAfter, 'opening the saved set finds the edit');
+
+  // ---- compare with the set as it was opened ----
+  await page.click('#undo');
+  await idle();
+  await page.locator('#settings button', { hasText: 'reset to the shipped style' }).click();
+  await idle();
+  await page.mouse.move(0, 0);
+  {
+    const h = knot('swing_knee', 'delta', 1);
+    await h.scrollIntoViewIfNeeded();
+    const b = await h.boundingBox();
+    await page.mouse.move(b.x + b.width / 2, b.y + b.height / 2);
+    await page.mouse.down();
+    for (let i = 1; i <= 6; i++) await page.mouse.move(b.x + b.width / 2 + i * 5, b.y + b.height / 2, { steps: 2 });
+    await page.mouse.up();
+    await idle();
+  }
+  await page.selectOption('#compare', 'opened');
+  await idle();
+  const compared = await studio(() => window.studio.compare && window.studio.compare.walk.curves.knee.mean);
+  check(Array.isArray(compared) && JSON.stringify(compared) !== JSON.stringify(await kneeCurve()),
+    'comparing with the set as opened shows its walk beside the edited one');
+  check(await page.locator('.mf-ghost').count() > 0, 'the opened set\'s terms are drawn beside the edited ones');
+  await page.waitForTimeout(700);
+  await shot('studio_compare.png');
+
+  // ---- the downloads: a glTF the Khronos validator accepts ----
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download-glb')]);
+  const glb = join(outDir, 'walk.glb');
+  await download.saveAs(glb);
+  const bytes = new Uint8Array(readFileSync(glb));
+  const report = await validator.validateBytes(bytes, { uri: 'walk.glb', writeTimestamp: false });
+  const { numErrors, numWarnings } = report.issues;
+  console.log(`glTF-Validator ${report.validatorVersion}: ${numErrors} errors, ${numWarnings} warnings, ` +
+    `${report.issues.numInfos} infos, ${report.issues.numHints} hints; ${bytes.length} bytes`);
+  check(bytes.length > 10000 && numErrors === 0 && numWarnings === 0, 'the downloaded walk.glb is valid glTF 2.0');
+  for (const [id, name] of [['#download-csv', 'walk.csv'], ['#download-bvh', 'walk.bvh']]) {
+    const [d] = await Promise.all([page.waitForEvent('download'), page.click(id)]);
+    check(d.suggestedFilename() === name, `${name} downloads`);
+  }
+  await page.selectOption('#compare', '');
+  await idle();
+
+  // ---- an output word typed into its slider's field, a step length into the panel's ----
+  const undoBefore = (await studio(() => window.studio.state.history)).undo;
+  const word = page.locator('.controller[data-controller="swing_knee"] [data-word="hold"] input').first();
+  await word.fill('50');
+  await word.press('Enter');
+  await idle();
+  const hold = await studio(() => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee')
+    .outputs[0].words.find((w) => w.name === 'hold').value);
+  check(hold === 50, `the word 'hold' took the value typed (${hold})`);
+  check((await studio(() => window.studio.state.history)).undo === undoBefore + 1, 'the word is one step of the history');
+  const step = page.locator('#settings').getByLabel('step length (m)', { exact: true });
+  await step.fill('0.6');
+  await step.press('Enter');
+  await idle();
+  const commanded = await studio(() => window.studio.state.settings.step);
+  const walked = await studio(() => window.studio.walk.gait.step_length);
+  check(commanded === 0.6, `the step length typed is the one commanded (${commanded} m)`);
+  check(Math.abs(walked - 0.6) < 0.03, `the walk takes the step length typed (${walked.toFixed(3)} m)`);
+  await step.fill('0.7');
+  await step.press('Enter');
+  await idle();
+
+  // ---- edit-to-redraw latency over 10 cycles: isolated edits, each a small drag ----
+  await studio(() => {
+    window.studio.latencies.length = 0;
+  });
+  const settings = await studio(() => window.studio.state.settings);
+  check(settings.cycles === 10, 'the walk is 10 gait cycles');
+  const h2 = knot('swing_knee', 'delta', 2);
+  await h2.scrollIntoViewIfNeeded();
+  const b2 = await h2.boundingBox();
+  const edits = 20;
+  for (let i = 0; i < edits; i++) {
+    const x = b2.x + b2.width / 2 + (i % 2 === 0 ? 0 : -3);
+    const target = b2.x + b2.width / 2 + (i % 2 === 0 ? -3 : 0);
+    await page.mouse.move(x, b2.y + b2.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(target, b2.y + b2.height / 2);
+    await page.mouse.up();
+    await idle();
+    await page.waitForTimeout(50);
+  }
+  const latencies = await studio(() => window.studio.latencies);
+  const sorted = (xs) => [...xs].sort((a, b) => a - b);
+  const median = (xs) => sorted(xs)[Math.floor(xs.length / 2)];
+  const totals = latencies.map((l) => l.total);
+  const servers = latencies.map((l) => l.server);
+  const requests = latencies.map((l) => l.request);
+  const applies = latencies.map((l) => l.apply);
+  const loadAverage = readFileSync('/proc/loadavg', 'utf8').split(' ')[0];
+  console.log(`edit-to-redraw latency, 10 gait cycles, ${totals.length} edits (load ${loadAverage}): ` +
+    `median ${median(totals).toFixed(1)} ms, fastest ${sorted(totals)[0].toFixed(1)}, ` +
+    `slowest ${sorted(totals).at(-1).toFixed(1)}; server ${median(servers).toFixed(1)} ms, ` +
+    `request and answer ${median(requests).toFixed(1)} ms, drawing ${median(applies).toFixed(1)} ms`);
+  check(totals.length >= edits, `every edit was measured (${totals.length})`);
+  if (Number.isFinite(maxMedian)) check(median(totals) < maxMedian, `median edit-to-redraw under ${maxMedian} ms`);
+  else console.log('     (no bound on the latency asked for: a sanitizer build)');
+
+  // ---- stairs: the terrain control ----
+  await settingSelect('terrain').selectOption({ label: '6 stairs up, 0.17 x 0.28 m' });
+  await idle();
+  const ground = await studio(() => window.studio.walk.ground);
+  check(ground.length > 10, 'the stairs are walked on');
+  await studio(() => window.studio.seek(3.4));
+  await idle();
+  await shot('studio_stairs.png');
+
+  // ---- a picture of the page drawn as with a graphics card: an edit against the set as opened ----
+  await page.goto(`${address}?render=full`);
+  await page.waitForFunction(() => window.studio && window.studio.ready, null, { timeout: 30000 });
+  await page.locator('#settings button', { hasText: 'reset to the shipped style' }).click();
+  await idle();
+  await settingSelect('terrain').selectOption({ label: 'level ground' });
+  await idle();
+  {
+    const h = knot('swing_knee', 'delta', 1);
+    const b = await h.boundingBox();
+    await page.mouse.move(b.x + b.width / 2, b.y + b.height / 2);
+    await page.mouse.down();
+    for (let i = 1; i <= 5; i++) await page.mouse.move(b.x + b.width / 2 - i * 4, b.y + b.height / 2, { steps: 2 });
+    await page.mouse.up();
+    await idle();
+  }
+  await page.selectOption('#compare', 'opened');
+  await idle();
+  await studio(() => window.studio.seek(2.55));
+  // The notice of the reset fades first.
+  await page.waitForFunction(() => !document.querySelector('#message').classList.contains('visible'),
+    null, { timeout: 10000 });
+  await idle();
+  await page.waitForTimeout(300);
+  await shot('studio.png');
+
+  check(pageErrors.length === 0, `no errors in the page${pageErrors.length ? ': ' + pageErrors.join('; ') : ''}`);
+  const shown = await studio(() => window.studio.errors);
+  check(shown.length === 0, `no refusals shown${shown.length ? ': ' + shown.join('; ') : ''}`);
+} catch (error) {
+  failures.push(error.stack || String(error));
+  console.log(`FAIL ${error.stack || error}`);
+  await shot('studio_failure.png').catch(() => {});
+} finally {
+  await context.close().catch(() => {});
+  server.kill('SIGINT');
+  rmSync(profile, { recursive: true, force: true });
+  rmSync(workspace, { recursive: true, force: true });
+}
+console.log(failures.length ? `${failures.length} checks failed` : 'every check passed');
+process.exit(failures.length ? 1 : 0);

@@ -1,0 +1,500 @@
+// The studio's API called in-process as the page calls it over HTTP: what it shows of a set, its
+// walk against the library's own walk, edits with their history, refusals that name the field
+// and change nothing, save and open, comparison and downloads.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/eval/evaluation.hpp"
+#include "fuzzygait/eval/motion.hpp"
+#include "fuzzygait/gait/walker.hpp"
+#include "fuzzygait/io/controller_files.hpp"
+#include "fuzzygait/io/normative.hpp"
+#include "fuzzygait/io/walk_csv.hpp"
+#include "fuzzygait/studio/studio.hpp"
+#include "scratch.hpp"
+
+namespace fuzzygait {
+namespace {
+
+using nlohmann::json;
+using studio::RequestError;
+using studio::Studio;
+using studio::StudioOptions;
+using ::testing::HasSubstr;
+
+std::filesystem::path scratch(const std::string& name) {
+  return test::studio_scratch("api", name);
+}
+
+StudioOptions quick(const std::string& workspace) {
+  StudioOptions o;
+  o.workspace = scratch(workspace);
+  o.cycles = 4;
+  return o;
+}
+
+const json& controller(const json& state, const std::string& id) {
+  for (const json& c : state.at("set").at("controllers")) {
+    if (c.at("id") == id) return c;
+  }
+  throw std::runtime_error("no controller " + id);
+}
+
+// A walk's view without the time it took to make, which differs from run to run.
+json timeless(json walk) {
+  walk.erase("timing_ms");
+  return walk;
+}
+
+// The status and field of the RequestError `call` throws; {0, ""} when it throws none.
+std::pair<int, std::string> refusal(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const RequestError& e) {
+    return {e.status(), e.field()};
+  }
+  return {0, ""};
+}
+
+TEST(StudioApi, StateShowsEveryControllerWithItsWordsKnotsAndRules) {
+  Studio studio(quick("state"));
+  const json state = studio.state();
+  EXPECT_EQ(state.at("set").at("name"), "default");
+  // The eight slots, then the default set's 22 terrain words' controllers.
+  EXPECT_EQ(state.at("set").at("controllers").size(), 30u);
+  const json& knee = controller(state, "swing_knee");
+  EXPECT_EQ(knee.at("title"), "swing knee");
+  const json& delta = knee.at("inputs").at(0);
+  EXPECT_EQ(delta.at("name"), "delta");
+  EXPECT_TRUE(delta.at("partition").get<bool>());
+  EXPECT_EQ(delta.at("knots"), json({-1.0, 0.513, 1.29, 1.5}));
+  EXPECT_EQ(delta.at("terms").at(1).at("name"), "center");
+  const json& words = knee.at("outputs").at(0).at("words");
+  EXPECT_EQ(words.at(0), json({{"name", "flex_fast"}, {"value", 880.0}}));
+  EXPECT_EQ(knee.at("rules").at("text").at(0),
+            "if delta is start and knee is straight then velocity is flex_fast");
+  // The grid reads down delta's terms and across knee's.
+  EXPECT_EQ(knee.at("rules").at("grid").at(2), json({"hold", "extend_fast", "extend_fast"}));
+  // Its output over both inputs, a 31 x 31 grid: flex_fast where delta starts and the knee is
+  // straight.
+  EXPECT_DOUBLE_EQ(knee.at("response").at("z").at(0).at(0).get<double>(), 880.0);
+  const json& stairs = controller(state, "stairs_swing_knee_up");
+  EXPECT_EQ(stairs.at("ground"), "stairs");
+  EXPECT_EQ(stairs.at("word"), "up");
+  EXPECT_EQ(state.at("settings").at("step"), 0.70);
+  EXPECT_EQ(state.at("history").at("undo"), 0);
+  EXPECT_EQ(state.at("reference").at("name"), "schwartz2008_free");
+}
+
+TEST(StudioApi, WalkIsTheLibrarysWalkMeasuredTheSameWay) {
+  StudioOptions options = quick("walk");
+  options.cycles = 10;
+  Studio studio(options);
+  const json walk = studio.walk().at("walk");
+
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  gait::WalkerOptions o;
+  o.segments = rig::segments_from_stature(1.75);
+  o.step_length = 0.70;
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::Walker walker(set, o, flat);
+  const eval::Motion motion = eval::record_cycles(walker, 10, 120.0);
+  const eval::Normative reference = io::load_normative("schwartz2008_free");
+  const eval::GaitReport report = eval::evaluate(motion, flat, &reference, 0.70);
+
+  EXPECT_TRUE(walk.at("completed").get<bool>());
+  EXPECT_EQ(walk.at("scores").at("knee").at("rmse").get<double>(), report.knee_score->rmse);
+  EXPECT_EQ(walk.at("scores").at("thigh").at("rmse").get<double>(), report.thigh_score->rmse);
+  EXPECT_EQ(walk.at("curves").at("knee").at("mean").get<std::vector<double>>(),
+            std::vector<double>(report.knee.mean.begin(), report.knee.mean.end()));
+  EXPECT_EQ(walk.at("figures").at(0).at("name"), "foot slip");
+  EXPECT_EQ(walk.at("figures").at(0).at("value").get<double>(), report.max_slip * 1e3);
+  EXPECT_TRUE(walk.at("warnings").empty());
+  // Frames at 30 a second, every fourth of the 120 recorded, points to 0.1 mm.
+  const json& frames = walk.at("frames");
+  EXPECT_EQ(frames.at("count").get<std::size_t>(), (motion.frames.size() + 3) / 4);
+  EXPECT_NEAR(frames.at("legs").at(12 + 2 * 5).get<double>(), motion.frames[0].points[1].tip.x,
+              5e-5);
+  EXPECT_NEAR(frames.at("legs").at(24 * 3 + 2 + 1).get<double>(),
+              motion.frames[3 * 4].points[0].knee.y, 5e-5);
+  EXPECT_NEAR(frames.at("time").at(3).get<double>(), motion.frames[3 * 4].time, 5e-5);
+}
+
+TEST(StudioApi, MovingAKnotChangesTheControllerAndTheWalkAndUndoRestoresBoth) {
+  Studio studio(quick("knot"));
+  const json before = studio.walk().at("walk");
+  const json answer = studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "delta"}, {"knot", 1}, {"value", 0.7}});
+  const json& delta = answer.at("controller").at("inputs").at(0);
+  EXPECT_EQ(delta.at("knots"), json({-1.0, 0.7, 1.29, 1.5}));
+  // The neighbours' feet moved with the knot: the partition holds.
+  EXPECT_EQ(delta.at("terms").at(0).at("parameters"), json({-2.0, -1.0, 0.7}));
+  EXPECT_EQ(delta.at("terms").at(2).at("parameters"), json({0.7, 1.29, 1.5}));
+  EXPECT_NE(answer.at("walk").at("curves").at("knee"), before.at("curves").at("knee"));
+  EXPECT_EQ(answer.at("history").at("undo"), 1);
+  EXPECT_THAT(answer.at("history").at("undo_label").get<std::string>(),
+              HasSubstr("swing_knee: delta knot 1 (center) 0.513 -> 0.7"));
+
+  const json undone = studio.undo();
+  EXPECT_EQ(timeless(undone.at("walk")), timeless(before));
+  EXPECT_EQ(controller(undone, "swing_knee").at("inputs").at(0).at("knots"),
+            json({-1.0, 0.513, 1.29, 1.5}));
+  EXPECT_EQ(undone.at("history").at("redo"), 1);
+  const json redone = studio.redo();
+  EXPECT_EQ(timeless(redone.at("walk")), timeless(answer.at("walk")));
+  EXPECT_EQ(refusal([&] { studio.redo(); }), std::make_pair(409, std::string("redo")));
+}
+
+TEST(StudioApi, TheEndKnotsCarryTheInputsRange) {
+  Studio studio(quick("end_knot"));
+  const json answer = studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "delta"}, {"knot", 3}, {"value", 1.6}});
+  const json& delta = answer.at("controller").at("inputs").at(0);
+  EXPECT_EQ(delta.at("range"), json({-1.0, 1.6}));
+  EXPECT_EQ(delta.at("terms").at(3).at("parameters"), json({1.29, 1.6, 2.1}));
+  EXPECT_TRUE(delta.at("partition").get<bool>());
+}
+
+TEST(StudioApi, OutputWordsAndTheSetsOwnNumbersAreEdited) {
+  Studio studio(quick("words"));
+  const json word = studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 50}});
+  EXPECT_EQ(word.at("controller").at("outputs").at(0).at("words").at(2),
+            json({{"name", "hold"}, {"value", 50.0}}));
+  const json inertia = studio.edit({{"set", "inertia_s"}, {"value", 0.05}});
+  EXPECT_EQ(inertia.at("parameters").at(0).at("value"), 0.05);
+  EXPECT_NE(inertia.at("walk").at("curves"), word.at("walk").at("curves"));
+  const json parameter = studio.edit({{"controller", "stairs_swing_knee_up"},
+                                      {"variable", "knee"},
+                                      {"term", "bent"},
+                                      {"parameter", 0},
+                                      {"value", -5}});
+  EXPECT_EQ(parameter.at("controller").at("inputs").at(1).at("terms").at(1).at("parameters").at(0),
+            -5.0);
+  EXPECT_EQ(parameter.at("history").at("undo"), 3);
+}
+
+TEST(StudioApi, EditsOfOneGestureAreOneStepOfTheHistory) {
+  Studio studio(quick("gesture"));
+  for (double v : {0.55, 0.6, 0.65}) {
+    studio.edit({{"controller", "swing_hip"},
+                 {"variable", "delta"},
+                 {"knot", 1},
+                 {"value", v},
+                 {"gesture", "drag-1"}});
+  }
+  const json next = studio.edit({{"controller", "swing_hip"},
+                                 {"variable", "delta"},
+                                 {"knot", 1},
+                                 {"value", 0.5},
+                                 {"gesture", "drag-2"}});
+  EXPECT_EQ(next.at("history").at("undo"), 2);
+  EXPECT_EQ(next.at("history").at("undo_label"), "swing_hip: delta knot 1 (center) 0.65 -> 0.5");
+  const json undone = studio.undo();
+  EXPECT_EQ(controller(undone, "swing_hip").at("inputs").at(0).at("knots").at(1), 0.65);
+  // The drag's step reads from where it began to where it ended.
+  EXPECT_EQ(undone.at("history").at("undo_label"),
+            "swing_hip: delta knot 1 (center) 0.828 -> 0.65");
+  const json first = studio.undo();
+  EXPECT_EQ(controller(first, "swing_hip"),
+            controller(Studio(quick("gesture_fresh")).state(), "swing_hip"));
+}
+
+TEST(StudioApi, RefusalsNameTheFieldAndChangeNothing) {
+  const StudioOptions options = quick("refusals");
+  Studio studio(options);
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 40}});
+  const json state = studio.state();
+  const json walk = studio.walk();
+  struct Case {
+    const char* what;
+    std::function<void()> call;
+    int status;
+    const char* field;
+  };
+  const auto edit = [&](json r) { return [&studio, r] { studio.edit(r); }; };
+  const auto settings = [&](json r) { return [&studio, r] { studio.change_settings(r); }; };
+  const std::vector<Case> cases = {
+      {"a knot past its neighbour",
+       edit({{"controller", "swing_knee"}, {"variable", "delta"}, {"knot", 1}, {"value", 1.3}}),
+       422, "value"},
+      {"a knot given as the text nan",
+       edit({{"controller", "swing_knee"}, {"variable", "delta"}, {"knot", 1}, {"value", "nan"}}),
+       400, "value"},
+      {"a knot that is null",
+       edit({{"controller", "swing_knee"}, {"variable", "delta"}, {"knot", 1}, {"value", nullptr}}),
+       400, "value"},
+      {"a knot that does not exist",
+       edit({{"controller", "swing_knee"}, {"variable", "delta"}, {"knot", 4}, {"value", 1}}), 422,
+       "knot"},
+      {"a fractional knot index",
+       edit({{"controller", "swing_knee"}, {"variable", "delta"}, {"knot", 0.5}, {"value", 1}}),
+       400, "knot"},
+      {"a value too large",
+       edit({{"controller", "swing_knee"},
+             {"variable", "velocity"},
+             {"term", "hold"},
+             {"value", 1e6}}),
+       422, "value"},
+      {"an unknown controller", edit({{"controller", "neck"}, {"variable", "delta"}}), 422,
+       "controller"},
+      {"an unknown variable",
+       edit({{"controller", "swing_knee"}, {"variable", "speed"}, {"knot", 0}, {"value", 0}}), 422,
+       "variable"},
+      {"an unknown word",
+       edit({{"controller", "swing_knee"},
+             {"variable", "velocity"},
+             {"term", "sprint"},
+             {"value", 1}}),
+       422, "term"},
+      {"an unknown field", edit({{"controller", "swing_knee"}, {"colour", "red"}}), 400, "colour"},
+      {"a body that is not an object", edit(json::array({1, 2})), 400, "body"},
+      {"a set parameter out of range", edit({{"set", "inertia_s"}, {"value", 2}}), 422, "value"},
+      {"a set parameter that does not exist", edit({{"set", "mass"}, {"value", 2}}), 422, "set"},
+      {"a shortest step the current step is under",
+       edit({{"set", "shortest_step_leg_lengths"}, {"value", 1.1}}), 422, "value"},
+      {"a step the legs cannot reach", settings({{"step", 3.0}}), 422, "step"},
+      {"a step shorter than the set walks", settings({{"step", 0.2}}), 422, "step"},
+      {"a stature out of range", settings({{"stature", 0.5}}), 422, "stature"},
+      {"too many cycles", settings({{"cycles", 1000}}), 422, "cycles"},
+      {"stairs too steep", settings({{"terrain", "stairs:0.5:0.28:6"}}), 422, "terrain"},
+      {"a profile file", settings({{"terrain", "profile:/etc/passwd"}}), 422, "terrain"},
+      {"an unknown reference", settings({{"reference", "robots"}}), 422, "reference"},
+      {"a style that does not exist",
+       [&] {
+         studio.open({{"set", "style:nope"}});
+       },
+       422, "set"},
+      {"a saved set outside the workspace",
+       [&] {
+         studio.open({{"set", "saved:../../etc"}});
+       },
+       422, "set"},
+      {"a folder not given",
+       [&] {
+         studio.open({{"set", "folder:3"}});
+       },
+       422, "set"},
+      {"a save name with a path",
+       [&] {
+         studio.save({{"name", "../escape"}});
+       },
+       422, "name"},
+      {"an empty save name",
+       [&] {
+         studio.save({{"name", ""}});
+       },
+       422, "name"},
+      {"a comparison with nothing",
+       [&] {
+         studio.compare({{"with", "style:nope"}});
+       },
+       422, "with"},
+      {"a download that does not exist", [&] { studio.download("../../etc/passwd"); }, 404, "file"},
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(refusal(c.call), std::make_pair(c.status, std::string(c.field))) << c.what;
+  }
+  EXPECT_EQ(studio.state(), state);
+  EXPECT_EQ(studio.walk(), walk);
+  EXPECT_FALSE(std::filesystem::exists(options.workspace.parent_path() / "escape"));
+}
+
+TEST(StudioApi, NothingToUndoIsAConflict) {
+  Studio studio(quick("nothing"));
+  EXPECT_EQ(refusal([&] { studio.undo(); }), std::make_pair(409, std::string("undo")));
+}
+
+TEST(StudioApi, ASavedSetLoadsBackWithItsEditsAndWalksTheSame) {
+  StudioOptions options = quick("save");
+  Studio studio(options);
+  const json edited = studio.edit(
+      {{"controller", "stance_knee"}, {"variable", "delta"}, {"knot", 1}, {"value", -0.2}});
+  studio.edit({{"set", "pelvis_tilt_deg"}, {"value", 8.5}});
+  const json saved = studio.save({{"name", "my_walk"}});
+  EXPECT_EQ(saved.at("saved"), "saved:my_walk");
+  const gait::ControllerSet loaded = gait::ControllerSet::load(options.workspace / "my_walk");
+  EXPECT_EQ(loaded.name, "my_walk");
+  EXPECT_NEAR(rig::degrees(loaded.pelvis_tilt), 8.5, 1e-9);
+  EXPECT_EQ(loaded.at(gait::LegPhase::Stance, gait::Joint::Knee)
+                .engine()
+                .inputs[0]
+                .terms[1]
+                .parameters[1],
+            -0.2);
+  const json walk = studio.walk().at("walk");
+  studio.open({{"set", "style:heavy"}});
+  EXPECT_NE(studio.walk().at("walk").at("curves"), walk.at("curves"));
+  const json sets = studio.state().at("sets");
+  EXPECT_TRUE(std::any_of(sets.begin(), sets.end(),
+                          [](const json& s) { return s.at("id") == "saved:my_walk"; }));
+  const json opened = studio.open({{"set", "saved:my_walk"}});
+  EXPECT_EQ(opened.at("walk").at("curves"), walk.at("curves"));
+  EXPECT_EQ(controller(opened, "stance_knee").at("inputs").at(0).at("knots").at(1), -0.2);
+  EXPECT_EQ(controller(opened, "stance_knee").at("inputs").at(0),
+            edited.at("controller").at("inputs").at(0));
+}
+
+TEST(StudioApi, OpeningAStyleIsAResetThatCanBeUndone) {
+  Studio studio(quick("reset"));
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "flex"}, {"value", 400}});
+  const json edited = studio.state();
+  const json reset = studio.open({{"set", "style:default"}});
+  EXPECT_EQ(controller(reset, "swing_knee"),
+            controller(Studio(quick("reset_fresh")).state(), "swing_knee"));
+  EXPECT_EQ(reset.at("history").at("undo"), 2);
+  studio.open({{"set", "style:heavy"}});
+  EXPECT_EQ(studio.state().at("opened").at("id"), "style:heavy");
+  studio.undo();
+  EXPECT_EQ(studio.state().at("opened").at("id"), "style:default");
+  studio.undo();
+  EXPECT_EQ(studio.state().at("set"), edited.at("set"));
+}
+
+TEST(StudioApi, TheSetAsOpenedFollowsOpensAndTheirUndo) {
+  Studio studio(quick("opened_follows"));
+  studio.compare({{"with", "opened"}});
+  const json default_walk = timeless(studio.walk().at("compare").at("walk"));
+  const json heavy = studio.open({{"set", "style:heavy"}});
+  EXPECT_EQ(heavy.at("compare").at("label"), "heavy (shipped style) as opened");
+  EXPECT_EQ(timeless(heavy.at("compare").at("walk")), timeless(heavy.at("walk")));
+  const json undone = studio.undo();
+  EXPECT_EQ(undone.at("opened").at("id"), "style:default");
+  EXPECT_EQ(timeless(undone.at("compare").at("walk")), default_walk);
+}
+
+TEST(StudioApi, CompareWalksTheSetAsOpenedBesideTheEditedOne) {
+  Studio studio(quick("compare"));
+  const json before = studio.walk().at("walk");
+  studio.edit({{"controller", "swing_knee"},
+               {"variable", "velocity"},
+               {"term", "flex_fast"},
+               {"value", 600}});
+  const json compared = studio.compare({{"with", "opened"}});
+  EXPECT_EQ(timeless(compared.at("compare").at("walk")), timeless(before));
+  const json both = studio.walk();
+  EXPECT_NE(both.at("walk").at("curves"), both.at("compare").at("walk").at("curves"));
+  const json heavy = studio.compare({{"with", "style:heavy"}});
+  EXPECT_EQ(heavy.at("compare").at("id"), "style:heavy");
+  // A change of settings walks both again.
+  const json longer = studio.change_settings({{"step", 0.75}});
+  EXPECT_NE(longer.at("compare").at("walk").at("curves"),
+            heavy.at("compare").at("walk").at("curves"));
+  EXPECT_TRUE(studio.compare({{"with", nullptr}}).at("compare").is_null());
+  EXPECT_TRUE(studio.walk().at("compare").is_null());
+}
+
+TEST(StudioApi, DownloadsAreTheFilesTheLibraryWritesOfTheWalk) {
+  Studio studio(quick("downloads"));
+  studio.change_settings({{"terrain", "slope:8"}});
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  gait::WalkerOptions o;
+  const terrain::Terrain ramp = terrain::Terrain::ramp(8.0);
+  gait::Walker walker(set, o, ramp);
+  const eval::Motion motion = eval::record_cycles(walker, 4, 120.0);
+  std::ostringstream csv;
+  io::write_walk_csv(csv, motion);
+  EXPECT_EQ(studio.download("walk.csv").bytes, csv.str());
+  EXPECT_EQ(studio.download("walk.bvh").bytes.substr(0, 9), "HIERARCHY");
+  const studio::Download glb = studio.download("walk.glb");
+  EXPECT_EQ(glb.content_type, "model/gltf-binary");
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string error;
+  std::string warning;
+  ASSERT_TRUE(loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                          reinterpret_cast<const unsigned char*>(glb.bytes.data()),
+                                          static_cast<unsigned int>(glb.bytes.size())))
+      << error;
+  EXPECT_EQ(model.animations.size(), 1u);
+  EXPECT_EQ(studio.download("walk.terrain.csv").bytes.substr(0, 4), "x,y\n");
+}
+
+TEST(StudioApi, EveryOfferedTerrainWalksWithTheDefaultSet) {
+  Studio studio(quick("terrains"));
+  const json terrains = studio.state().at("terrains");
+  for (const json& t : terrains) {
+    const json answer = studio.change_settings({{"terrain", t.at("spec")}});
+    EXPECT_EQ(answer.at("settings").at("terrain"), t.at("spec"));
+    EXPECT_TRUE(answer.at("walk").at("completed").get<bool>()) << t.at("spec");
+    EXPECT_GT(answer.at("walk").at("ground").size(), 2u) << t.at("spec");
+  }
+  // Off level ground the figures are the terrain's: every leg point, the swing's clearance.
+  EXPECT_EQ(studio.walk().at("walk").at("figures").at(2).at("name"), "swing clearance");
+}
+
+TEST(StudioApi, AWalkThatStallsIsShownWithAWarning) {
+  Studio studio(quick("stall"));
+  // A swinging hip that never flexes: the leg cannot reach its target.
+  for (const char* word : {"slow", "fast", "stay", "back"}) {
+    studio.edit(
+        {{"controller", "swing_hip"}, {"variable", "velocity"}, {"term", word}, {"value", 0}});
+  }
+  const json walk = studio.walk().at("walk");
+  EXPECT_FALSE(walk.at("completed").get<bool>());
+  EXPECT_THAT(walk.at("warnings").at(0).get<std::string>(), HasSubstr("did not complete"));
+  EXPECT_GT(walk.at("frames").at("count").get<int>(), 100);
+}
+
+TEST(StudioApi, FoldersGivenAtTheStartOpenFirstAndAnyShapeOfTermIsShown) {
+  // A set of one's own whose swing toe has a Gaussian term: no partition, no knots to drag; its
+  // terms' parameters are edited instead.
+  const std::filesystem::path folder = scratch("own_set") / "gaussian";
+  gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  fuzzy::Engine toe = set.at(gait::LegPhase::Swing, gait::Joint::Toe).engine();
+  toe.inputs[0].terms[0] =
+      fuzzy::make_term(toe.inputs[0].terms[0].name, fuzzy::TermKind::Gaussian, "-30 10");
+  set.controllers[static_cast<std::size_t>(gait::slot(gait::LegPhase::Swing, gait::Joint::Toe))] =
+      gait::Controller(toe, "swing_toe.fll");
+  set.name = "gaussian";
+  io::save_controller_set(set, folder);
+  StudioOptions options = quick("own");
+  options.folders = {folder};
+  Studio studio(options);
+  const json state = studio.state();
+  EXPECT_EQ(state.at("opened").at("id"), "folder:0");
+  EXPECT_EQ(state.at("set").at("name"), "gaussian");
+  const json& input = controller(state, "swing_toe").at("inputs").at(0);
+  EXPECT_FALSE(input.at("partition").get<bool>());
+  EXPECT_EQ(input.at("terms").at(0).at("shape"), "Gaussian");
+  EXPECT_EQ(input.at("terms").at(0).at("samples").size(), 101u);
+  // Sampled over the input's range (-30 to 60 deg) from the engine's own Gaussian: 1 at its
+  // mean, -30, and exp(-0.99^2 / 2) at sample 11, 9.9 deg (0.99 standard deviations) on.
+  const json& samples = input.at("terms").at(0).at("samples");
+  EXPECT_DOUBLE_EQ(samples.at(0).get<double>(), 1.0);
+  EXPECT_NEAR(samples.at(11).get<double>(), std::exp(-0.5 * 0.99 * 0.99), 1e-12);
+  const std::string name = input.at("name");
+  EXPECT_EQ(
+      refusal([&] {
+        studio.edit({{"controller", "swing_toe"}, {"variable", name}, {"knot", 0}, {"value", 0}});
+      }),
+      std::make_pair(422, std::string("knot")));
+  const json moved = studio.edit({{"controller", "swing_toe"},
+                                  {"variable", name},
+                                  {"term", input.at("terms").at(0).at("name")},
+                                  {"parameter", 1},
+                                  {"value", 0.5}});
+  EXPECT_EQ(moved.at("controller").at("inputs").at(0).at("terms").at(0).at("parameters"),
+            json({-30.0, 0.5}));
+  EXPECT_THROW(
+      {
+        StudioOptions missing = quick("missing");
+        missing.folders = {scratch("empty_folder")};
+        Studio broken(missing);
+      },
+      std::exception);
+}
+
+}  // namespace
+}  // namespace fuzzygait
