@@ -1,8 +1,12 @@
 // fuzzygait: command-line front end of the library.
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 
 #include "commands.hpp"
+#ifndef FUZZYGAIT_HAVE_STUDIO
+#include "studio_missing.hpp"
+#endif
 
 int main(int argc, char** argv) {
   CLI::App app{"fuzzygait: real-time procedural gait animation driven by fuzzy controllers"};
@@ -15,6 +19,16 @@ int main(int argc, char** argv) {
   fuzzygait::cli::add_tune_terrain_command(app);
 #ifdef FUZZYGAIT_HAVE_STUDIO
   fuzzygait::cli::add_studio_command(app);
+#else
+  // A build without the studio says why rather than not knowing the command.
+  app.add_subcommand("studio", "Not in this build: " FUZZYGAIT_STUDIO_MISSING)
+      ->allow_extras()
+      ->callback([] {
+        throw std::runtime_error(
+            "this fuzzygait was built without the studio: " FUZZYGAIT_STUDIO_MISSING
+            "; its npm packages are installed when CMake configures the build: configure "
+            "again where registry.npmjs.org can be reached");
+      });
 #endif
   int status = 0;
   try {
