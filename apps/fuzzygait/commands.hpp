@@ -39,5 +39,6 @@ void add_tune_terrain_command(CLI::App& app);
 void add_walk_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_mocap_command(CLI::App& app);
+void add_train_command(CLI::App& app);
 
 }  // namespace fuzzygait::cli

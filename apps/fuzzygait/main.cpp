@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   fuzzygait::cli::add_fuzzy_command(app);
   fuzzygait::cli::add_tune_command(app);
   fuzzygait::cli::add_tune_terrain_command(app);
+  fuzzygait::cli::add_train_command(app);
   int status = 0;
   try {
     app.parse(argc, argv);

@@ -10,29 +10,13 @@
 #include "fuzzygait/eval/recovery.hpp"
 #include "fuzzygait/fuzzy/term.hpp"
 #include "fuzzygait/learn/cmaes.hpp"
+#include "offline/learn/set_edit.hpp"
+#include "offline/learn/words.hpp"
 #include "runtime/common/format.hpp"
 
 namespace fuzzygait::learn {
-namespace {
 
-double round_significant(double v, int digits) {
-  if (v == 0.0 || !std::isfinite(v)) return v;
-  const double magnitude =
-      std::pow(10.0, digits - 1 - static_cast<int>(std::floor(std::log10(std::abs(v)))));
-  return std::round(v * magnitude) / magnitude;
-}
-
-gait::ControllerSet rebuild(const gait::ControllerSet& base, std::vector<fuzzy::Engine>& engines,
-                            double inertia) {
-  gait::ControllerSet set = base;
-  set.inertia = inertia;
-  for (std::size_t s = 0; s < engines.size(); ++s) {
-    set.controllers[s] = gait::Controller(std::move(engines[s]), base.controllers[s].source());
-  }
-  return set;
-}
-
-}  // namespace
+using detail::round_significant;
 
 SetParameters::SetParameters(const gait::ControllerSet& base, double minimum_inertia)
     : base_(base), minimum_inertia_(minimum_inertia) {
@@ -97,13 +81,10 @@ gait::ControllerSet SetParameters::with_values(const std::vector<double>& values
     const double gap = 0.02 * (v.maximum - v.minimum);
     const double low = v.terms[knot.index - 1].parameters[1] + gap;
     const double high = v.terms[knot.index + 1].parameters[1] - gap;
-    const double at = std::clamp(values[k++], low, std::max(low, high));
     // The knot is the peak of its term and the feet of its neighbours (a strong partition).
-    v.terms[knot.index].parameters[1] = at;
-    v.terms[knot.index - 1].parameters[2] = at;
-    v.terms[knot.index + 1].parameters[0] = at;
+    detail::move_knot(v, knot.index, std::clamp(values[k++], low, std::max(low, high)));
   }
-  return rebuild(base_, engines, inertia);
+  return detail::with_engines(base_, engines, inertia);
 }
 
 gait::ControllerSet SetParameters::rounded(const std::vector<double>& scaled,
@@ -122,45 +103,13 @@ double word_penalty(const gait::ControllerSet& set, const CostWeights& weights) 
   double penalty = 0.0;
   for (const gait::Controller& c : set.controllers) {
     const fuzzy::OutputVariable& out = c.engine().outputs.at(0);
-    const double scale = weights.word_unit * (out.maximum - out.minimum);
-    auto value = [&out](const std::string& word, double& v) {
-      const fuzzy::Term* t = out.find_term(word);
-      if (!t || t->kind != fuzzy::TermKind::Constant) return false;
-      v = t->parameters[0];
-      return true;
-    };
-    for (const fuzzy::Term& t : out.terms) {
-      if (t.kind != fuzzy::TermKind::Constant) continue;
-      const double v = t.parameters[0];
-      const std::string& w = t.name;
-      auto has = [&w](const char* part) { return w.find(part) != std::string::npos; };
-      if (w == "stay" || w == "hold") penalty += std::max(0.0, std::abs(v) - scale) / scale;
-      const bool positive = has("flex") || has("up") || has("roll") || has("settle") ||
-                            (w == "slow" || w == "fast" || w == "steady" || w == "late");
-      const bool negative =
-          has("extend") || has("down") || has("push") || has("lower") || w == "back";
-      if (positive) penalty += std::max(0.0, -v) / scale;
-      if (negative) penalty += std::max(0.0, v) / scale;
-      const std::size_t fast = w.find("_fast");
-      double base = 0.0;
-      if (fast != std::string::npos && value(w.substr(0, fast), base)) {
-        penalty += std::max(0.0, std::abs(base) - std::abs(v)) / scale;
-      }
-      const std::size_t slow = w.find("_slow");
-      if (slow != std::string::npos && value(w.substr(0, slow), base)) {
-        penalty += std::max(0.0, std::abs(v) - std::abs(base)) / scale;
-      }
+    const double unit = weights.word_unit * (out.maximum - out.minimum);
+    std::vector<double> values(out.terms.size(), 0.0);
+    for (std::size_t t = 0; t < out.terms.size(); ++t) {
+      if (out.terms[t].kind == fuzzy::TermKind::Constant) values[t] = out.terms[t].parameters[0];
     }
-    double slow = 0.0;
-    double fast = 0.0;
-    double steady = 0.0;
-    double late = 0.0;
-    if (value("slow", slow) && value("fast", fast)) penalty += std::max(0.0, slow - fast) / scale;
-    // The body's steady progress is faster than its slow start and its late finish.
-    if (value("steady", steady)) {
-      if (value("slow", slow)) penalty += std::max(0.0, slow - steady) / scale;
-      if (value("late", late)) penalty += std::max(0.0, late - steady) / scale;
-    }
+    for (const detail::WordPromise& p : detail::word_promises(out))
+      penalty += detail::broken_by(p, values.data(), unit);
   }
   return penalty;
 }
@@ -225,6 +174,33 @@ std::vector<WalkCondition> grid_conditions(const eval::Normative& reference,
     }
   }
   return conditions;
+}
+
+eval::Normative clip_reference(const eval::GaitReport& clip, const std::string& name) {
+  eval::Normative n;
+  n.name = name;
+  n.thigh = clip.thigh;
+  n.hip = clip.thigh;
+  n.knee = clip.knee;
+  n.ankle = clip.ankle;
+  return n;
+}
+
+WalkCondition clip_condition(const eval::Normative& reference, const eval::GaitReport& clip,
+                             const rig::Segments& segments, double step, const ClipTolerances& t) {
+  WalkCondition c;
+  c.segments = segments;
+  c.step_length = step;
+  c.reference = &reference;
+  c.enforce_bounds = true;
+  c.stance = Range{clip.stance_percent - t.stance, clip.stance_percent + t.stance};
+  c.cycle_time =
+      Range{clip.cycle_time * (1.0 - t.cycle_time), clip.cycle_time * (1.0 + t.cycle_time)};
+  c.knee_peak = Range{clip.knee_peak - t.knee_peak, clip.knee_peak + t.knee_peak};
+  c.knee_peak_percent = Range{clip.knee_peak_percent - t.knee_peak_percent,
+                              clip.knee_peak_percent + t.knee_peak_percent};
+  c.toes_rest = false;
+  return c;
 }
 
 std::vector<std::uint64_t> recovery_seeds(int count) {
@@ -343,7 +319,7 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
     double cost = 0.0;
     try {
       gait::WalkerOptions wo;
-      wo.segments = rig::segments_from_stature(c.stature);
+      wo.segments = c.segments.value_or(rig::segments_from_stature(c.stature));
       wo.step_length = c.step_length;
       gait::Walker walker(set, wo, ground);
       const eval::Motion motion = eval::record(walker, options.duration, options.fps);
@@ -358,12 +334,17 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
               w.toe_clearance_wanted;
       cost +=
           w.cycle_time_sd * r.cycle_time_sd + w.step_length_sd * r.step_length_sd / c.step_length;
-      cost +=
-          w.stance_outside_range * over(r.stance_percent, options.stance_min, options.stance_max);
+      const Range stance = c.stance.value_or(Range{options.stance_min, options.stance_max});
+      const Range cycle =
+          c.cycle_time.value_or(Range{options.cycle_time_min, options.cycle_time_max});
+      const Range knee_peak =
+          c.knee_peak.value_or(Range{options.knee_peak_min, options.knee_peak_max});
+      const Range knee_peak_percent = c.knee_peak_percent.value_or(
+          Range{options.knee_peak_percent_min, options.knee_peak_percent_max});
+      cost += w.stance_outside_range * over(r.stance_percent, stance.min, stance.max);
       cost += w.pelvis_outside_range * over(1000.0 * r.pelvis_vertical_range,
                                             options.pelvis_range_min, options.pelvis_range_max);
-      cost += w.cycle_time_outside_range *
-              over(r.cycle_time, options.cycle_time_min, options.cycle_time_max);
+      cost += w.cycle_time_outside_range * over(r.cycle_time, cycle.min, cycle.max);
       // Velocities must not jump where a phase hands a joint to another controller.
       const double jump_ratio =
           r.max_velocity_jump / std::max(r.typical_velocity_change, kLeastVelocityChange);
@@ -390,18 +371,16 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
                        std::max(0.0, s->acceleration_ratio() - options.acceleration_ratio_max);
           }
         }
-        realism += w.knee_peak_outside_range *
-                       over(r.knee_peak, options.knee_peak_min, options.knee_peak_max) +
-                   w.knee_peak_timing_outside_range * over(r.knee_peak_percent,
-                                                           options.knee_peak_percent_min,
-                                                           options.knee_peak_percent_max);
+        realism += w.knee_peak_outside_range * over(r.knee_peak, knee_peak.min, knee_peak.max) +
+                   w.knee_peak_timing_outside_range *
+                       over(r.knee_peak_percent, knee_peak_percent.min, knee_peak_percent.max);
         // The toes rest near neutral while the foot is flat and again before landing.
         double toe = 0.0;
         for (const SampleRange& rest : kToeRestSamples) {
           for (int k = rest.first; k <= rest.last; ++k)
             toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
         }
-        realism += w.toe_off_neutral * toe;
+        if (c.toes_rest) realism += w.toe_off_neutral * toe;
         cost += c.realism_weight * realism;
       }
       if (report) {
@@ -410,8 +389,9 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
             line, sizeof line,
             "stature %.2f step %.2f: cost %.2f | step %.3f (%.1f%%) stance %.1f cycle %.3f "
             "clear %.1f mm knee %.0f@%.0f%%",
-            c.stature, c.step_length, cost, r.step_length, step_error, r.stance_percent,
-            r.cycle_time, 1000.0 * r.min_toe_clearance, r.knee_peak, r.knee_peak_percent);
+            c.segments ? c.segments->leg_length() / 0.53 : c.stature, c.step_length, cost,
+            r.step_length, step_error, r.stance_percent, r.cycle_time, 1000.0 * r.min_toe_clearance,
+            r.knee_peak, r.knee_peak_percent);
         *report += line;
         if (c.reference) {
           std::snprintf(line, sizeof line,
@@ -464,9 +444,11 @@ TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
   cma.max_generations = options.generations;
   cma.seed = options.seed;
   cma.threads = options.threads;
-  cma.progress = [&options](int generation, double best, const std::vector<double>&) {
+  cma.progress = [&](int generation, double best, const std::vector<double>& x) {
     if (options.progress) options.progress(generation, best);
+    if (options.best) options.best(generation, parameters.apply(x));
   };
+  cma.stop = options.stop;
   auto cost = [&](const std::vector<double>& x) {
     return candidate_cost([&] { return parameters.apply(x); }, options);
   };
@@ -489,8 +471,11 @@ TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
     polish.sigma = 0.25 * options.sigma;
     polish.max_generations = options.polish_generations;
     polish.seed = options.seed + 1;
-    polish.progress = [&options](int generation, double best, const std::vector<double>&) {
+    polish.progress = [&](int generation, double best, const std::vector<double>& x) {
       if (options.progress) options.progress(options.generations + generation, best);
+      if (options.best) {
+        options.best(options.generations + generation, parameters.rounded(x, options.digits));
+      }
     };
     const CmaesResult p = minimize(rounded_cost, r.best, polish);
     out.set = parameters.rounded(p.best, options.digits);
