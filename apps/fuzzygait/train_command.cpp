@@ -34,6 +34,8 @@ extern "C" void on_interrupt(int) {
 struct TrainCommandOptions {
   std::vector<std::string> clips;
   std::string output;
+  std::string evaluate;  // the figures of the starting set alone, as JSON to this file
+  int check_starts = 100;
   std::string base = "default";
   std::string controllers;
   std::string name;
@@ -73,6 +75,56 @@ nlohmann::ordered_json score_json(const learn::ClipScore& s) {
   return j;
 }
 
+// The clips' body and step, their means: what a set trained on them walks by default.
+struct MeanBody {
+  rig::Segments body{};
+  double step = 0.0;
+  std::string names;  // "07_01, 07_02"
+};
+MeanBody mean_body(const std::vector<learn::TrainClip>& clips) {
+  MeanBody m;
+  for (const learn::TrainClip& c : clips) {
+    m.names += (m.names.empty() ? "" : ", ") + c.name;
+    const rig::Segments& s = c.motion.segments;
+    m.body.thigh += s.thigh;
+    m.body.shank += s.shank;
+    m.body.ankle_height += s.ankle_height;
+    m.body.heel += s.heel;
+    m.body.ball += s.ball;
+    m.body.toe += s.toe;
+    m.step += c.step_length;
+  }
+  const auto n = static_cast<double>(clips.size());
+  for (double* v : {&m.body.thigh, &m.body.shank, &m.body.ankle_height, &m.body.heel, &m.body.ball,
+                    &m.body.toe, &m.step})
+    *v /= n;
+  return m;
+}
+
+// The grid's contact bounds and the random starts of `set`, as text and into `json`.
+std::string checks(const gait::ControllerSet& set, const MeanBody& body, int starts,
+                   nlohmann::ordered_json& json) {
+  const learn::GridCheck grid = learn::check_grid(set);
+  std::string text =
+      "level grid (steps 0.50-0.85 m, statures 1.50-2.00 m): " + std::to_string(grid.within) +
+      " of " + std::to_string(grid.walks) + " walks within the contact bounds\n";
+  for (const std::string& miss : grid.misses)
+    text += "  " + miss + "\n";
+  json["grid_walks"] = grid.walks;
+  json["grid_within_bounds"] = grid.within;
+  json["grid_misses"] = grid.misses;
+  if (starts > 0) {
+    const learn::StartsCheck s = learn::check_starts(set, body.body, body.step, starts);
+    text += "random starts at the clips' body and step: " + std::to_string(s.sound) + " of " +
+            std::to_string(s.starts) + " sound, " + std::to_string(s.settled) +
+            " settled within three steps\n";
+    json["random_starts"] = s.starts;
+    json["random_starts_sound"] = s.sound;
+    json["random_starts_settled"] = s.settled;
+  }
+  return text;
+}
+
 // The words whose numbers moved, base -> trained, one line each.
 std::vector<std::string> moved_values(const gait::ControllerSet& base,
                                       const gait::ControllerSet& trained) {
@@ -98,8 +150,15 @@ void add_train_command(CLI::App& app) {
   CLI::App* train = app.add_subcommand(
       "train", "Learn a controller set from motion capture clips (BVH) and write it with a report");
   train->add_option("clips", o->clips, "BVH files of walks")->required();
-  train->add_option("-o,--output", o->output, "Folder to write the trained set and its report to")
-      ->required();
+  train->add_option("-o,--output", o->output, "Folder to write the trained set and its report to");
+  train->add_option("--evaluate", o->evaluate,
+                    "Do not train: walk the starting set against the clips, check it on the grid "
+                    "and from random starts, print the figures and write them as JSON to this file "
+                    "('-' for standard output)");
+  train
+      ->add_option("--check-starts", o->check_starts,
+                   "Random start poses the trained set is checked from (default 100)")
+      ->check(CLI::Range(0, 100000));
   train->add_option("--base", o->base, "Built-in set to start from (default: default)");
   train->add_option("--controllers", o->controllers, "Controller set folder to start from");
   train->add_option("--name", o->name, "Name of the trained set (default: the folder's name)");
@@ -107,11 +166,11 @@ void add_train_command(CLI::App& app) {
   add_clip_options(train, o->reading);
   train
       ->add_option("--generations", polish.generations,
-                   "Generations of the closed-loop polish (CMA-ES; default 150)")
+                   "Generations of the closed-loop polish (CMA-ES; default 800)")
       ->check(CLI::Range(0, 1000000));
   train
       ->add_option("--polish", polish.polish_generations,
-                   "Then generations on the rounded values (default 50)")
+                   "Then generations on the rounded values (default 100)")
       ->check(CLI::Range(0, 1000000));
   train->add_option("--threads", polish.threads, "Walks evaluated in parallel (default 2)")
       ->check(CLI::Range(1, 1024));
@@ -134,6 +193,9 @@ void add_train_command(CLI::App& app) {
     if (train->count("--base") > 0 && !o->controllers.empty()) {
       throw std::invalid_argument("--base and --controllers both name the set to start from");
     }
+    if (o->output.empty() && o->evaluate.empty()) {
+      throw std::invalid_argument("-o: the folder to write the trained set to is required");
+    }
     // Everything that can be refused is refused before the training starts.
     const gait::ControllerSet base = o->controllers.empty()
                                          ? gait::ControllerSet::builtin(o->base)
@@ -150,6 +212,33 @@ void add_train_command(CLI::App& app) {
                 << c.report.cycles << (c.report.cycles == 1 ? " cycle" : " cycles") << ", step "
                 << fixed(c.step_length, 3) << " m, stance " << fixed(c.report.stance_percent, 1)
                 << " %, cadence " << fixed(c.report.cadence, 1) << " steps/min\n";
+    }
+    const MeanBody clips_body = mean_body(clips);
+    if (!o->evaluate.empty()) {
+      nlohmann::ordered_json json;
+      json["set"] = base.name;
+      nlohmann::ordered_json per_clip = nlohmann::json::array();
+      std::string text;
+      for (const learn::TrainClip& c : clips) {
+        const learn::ClipScore score = learn::score_clip(base, c);
+        text += c.name + " (clip: stance " + fixed(c.report.stance_percent, 1) + " %, cadence " +
+                fixed(c.report.cadence, 1) + ", step " + fixed(c.step_length, 3) +
+                " m): " + score_text(score) + "\n";
+        nlohmann::ordered_json j = score_json(score);
+        j["clip"] = c.name;
+        j["clip_stance_percent"] = c.report.stance_percent;
+        j["clip_cadence_steps_per_min"] = c.report.cadence;
+        per_clip.push_back(j);
+      }
+      json["clips"] = per_clip;
+      text += checks(base, clips_body, o->check_starts, json);
+      std::cout << text;
+      if (o->evaluate == "-") {
+        std::cout << json.dump(2) << "\n";
+      } else {
+        io::write_file(o->evaluate, json.dump(2) + "\n");
+      }
+      return;
     }
     learn::TrainOptions options = o->train;
     options.fits = !o->no_fits;
@@ -182,28 +271,10 @@ void add_train_command(CLI::App& app) {
     const std::filesystem::path folder(o->output);
     trained.name = o->name.empty() ? folder.filename().string() : o->name;
     if (trained.name.empty()) trained.name = "trained";
-    std::string sources;
-    rig::Segments body{};
-    double step = 0.0;
-    for (const learn::TrainClip& c : clips) {
-      sources += (sources.empty() ? "" : ", ") + c.name;
-      const rig::Segments& s = c.motion.segments;
-      body.thigh += s.thigh;
-      body.shank += s.shank;
-      body.ankle_height += s.ankle_height;
-      body.heel += s.heel;
-      body.ball += s.ball;
-      body.toe += s.toe;
-      step += c.step_length;
-    }
-    const auto n = static_cast<double>(clips.size());
-    for (double* v :
-         {&body.thigh, &body.shank, &body.ankle_height, &body.heel, &body.ball, &body.toe})
-      *v /= n;
-    trained.body = body;
-    trained.body_step_length = step / n;
+    trained.body = clips_body.body;
+    trained.body_step_length = clips_body.step;
     trained.description = o->description.empty()
-                              ? "Trained on " + sources + " from '" + base.name + "'."
+                              ? "Trained on " + clips_body.names + " from '" + base.name + "'."
                               : o->description;
     io::save_controller_set(trained, folder);
 
@@ -253,6 +324,7 @@ void add_train_command(CLI::App& app) {
       written.push_back(picture.string());
     }
     json["clips"] = per_clip;
+    text += "\n" + checks(trained, clips_body, o->check_starts, json);
     text += "\nstages:\n";
     nlohmann::ordered_json stages = nlohmann::json::array();
     for (const learn::StageRecord& s : result.stages) {

@@ -100,7 +100,7 @@ TEST(TrainCommand, WritesTheSetItsReportAndTheClipsCurves) {
     return Walked{pelvis_y, measured["step_length_m"].get<double>()};
   };
   const Walked own = walk("");
-  EXPECT_NEAR(own.pelvis_height, 0.80, 0.03);
+  EXPECT_NEAR(own.pelvis_height, 0.77, 0.07);  // legs of 0.836 m, knees bent a little
   EXPECT_NEAR(own.step, 0.733, 0.733 * 0.05);
   EXPECT_GT(walk("--stature 1.9").pelvis_height, 0.9);
   EXPECT_LT(walk("--step 0.62").step, own.step - 0.05);

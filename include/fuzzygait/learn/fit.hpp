@@ -44,7 +44,7 @@ struct FitOptions {
   double words = 1.0;
   double word_unit = 0.02;
   // Knots closer than this share of their input's range pay `order` per squared share.
-  double knot_gap = 0.04;
+  double knot_gap = 0.02;
   double order = 100.0;
   // The inertia stays within these (s).
   double shortest_inertia = 0.005;
@@ -86,7 +86,7 @@ std::vector<double> ordered(const SetNetwork& network, std::span<const double> w
 // their input's range apart, every output word's promise kept (word_unit as in FitOptions).
 struct Readability {
   int digits = 3;
-  double knot_gap = 0.04;
+  double knot_gap = 0.02;
   double word_unit = 0.02;
 };
 

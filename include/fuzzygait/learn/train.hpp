@@ -63,8 +63,9 @@ struct TrainOptions {
   std::function<bool()> stop;  // true: stop after the current iteration, keeping the best set
 };
 
-// The default options: 150 polish generations on the rounded values, 3 digits, threads 2,
-// recovery seeds none, curve bounds 3.7 deg.
+// The default options: 800 polish generations of 48 walks, then 100 on the rounded values (3
+// significant digits), two threads, words and knots of angles free, the words' promises kept,
+// curve bounds 3.7 deg, a clip's stance and cycle time held firmly, no random starts.
 TrainOptions default_train_options();
 
 // One clip's closed-loop figures: the set walked at the clip's legs and step against its mean
@@ -79,6 +80,25 @@ struct ClipScore {
   eval::GaitReport report;
 };
 ClipScore score_clip(const gait::ControllerSet& set, const TrainClip& clip, double duration = 10.0);
+
+// The level-walk contact bounds (eval::missed_contact_bounds) on the acceptance grid: steps 0.50,
+// 0.60, 0.70 and 0.85 m at statures 1.50, 1.75 and 2.00 m, 10 s each.
+struct GridCheck {
+  int walks = 0;
+  int within = 0;                   // walks that meet every contact bound
+  std::vector<std::string> misses;  // "0.85 m at 1.50 m: foot slip ..." for each other walk
+};
+GridCheck check_grid(const gait::ControllerSet& set);
+
+// Random start poses (eval::walk_from_random_start, seeds 1000 on) at this body and step: walks
+// that stay sound, and that also take steps within 5 % of the command from their fourth step.
+struct StartsCheck {
+  int starts = 0;
+  int sound = 0;
+  int settled = 0;
+};
+StartsCheck check_starts(const gait::ControllerSet& set, const rig::Segments& body, double step,
+                         int count);
 
 struct StageRecord {
   std::string stage;

@@ -131,6 +131,8 @@ struct TuneOptions {
   std::vector<WalkCondition> conditions;
   std::vector<std::uint64_t> recovery_seeds;  // random starts that must settle into the gait
   double duration = 10.0;                     // s per walk
+  // s each walk walks before it is recorded, from the walker's default start (StartPose).
+  double warm_up = 3.0;
   // Adults walk about 100-120 steps a minute at these step lengths: cycles of 1.0-1.2 s.
   double cycle_time_min = 1.0;
   double cycle_time_max = 1.2;
@@ -171,9 +173,12 @@ struct TuneOptions {
   // written out for the artist.
   int polish_generations = 0;
   int digits = 3;
+  // Also tune where the words of joint angles and of the sole hold (SetParameters' angle_words).
+  bool angle_words = false;
   int threads = 2;
   std::uint64_t seed = 1;
   double sigma = 0.3;
+  int population = 0;  // candidates a generation; 0: CMA-ES's default, 4 + 3 ln(parameters)
   std::function<void(int generation, double cost)> progress;
   // Asked after every generation; true ends the tuning there, with the best set found so far.
   std::function<bool()> stop;
@@ -186,7 +191,11 @@ struct TuneOptions {
 class SetParameters {
  public:
   // minimum_inertia (s) keeps joint velocities from jumping: tuning never goes below it.
-  explicit SetParameters(const gait::ControllerSet& base, double minimum_inertia = 0.02);
+  // Knots: of the progress inputs (delta, other_delta) only, when along its progress a joint
+  // changes its mind; with `angle_words`, of every input, the words of joint angles and of the
+  // sole too ("bent" at 30 degrees).
+  explicit SetParameters(const gait::ControllerSet& base, double minimum_inertia = 0.02,
+                         bool angle_words = false);
   std::size_t size() const { return scales_.size(); }
   // Scaled so that a change of 1 is a large change for every parameter.
   std::vector<double> values() const;
@@ -197,14 +206,16 @@ class SetParameters {
   gait::ControllerSet with_values(const std::vector<double>& values) const;
 
  private:
-  struct Knot {
+  enum class Kind { Output, Inertia, Knot };
+  struct Value {
+    Kind kind;
     std::size_t slot;
-    std::size_t input;
-    std::size_t index;
+    std::size_t input;  // Knot
+    std::size_t index;  // the output term, or the knot's term
   };
   gait::ControllerSet base_;
   double minimum_inertia_;
-  std::vector<Knot> knots_;
+  std::vector<Value> values_;
   std::vector<double> scales_;
   std::vector<double> start_;
 };

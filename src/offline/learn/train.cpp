@@ -1,10 +1,12 @@
 #include "fuzzygait/learn/train.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <utility>
 
+#include "fuzzygait/eval/recovery.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/learn/network.hpp"
 #include "fuzzygait/learn/training.hpp"
@@ -99,16 +101,22 @@ TrainClip make_train_clip(std::string name, eval::Motion motion, terrain::Terrai
 
 TrainOptions default_train_options() {
   TrainOptions o;
-  o.polish.generations = 150;
-  o.polish.polish_generations = 50;
+  o.polish.generations = 800;
+  o.polish.polish_generations = 100;
+  // Many candidates a generation: the walks answer small changes of the values unevenly (a
+  // landing a time step earlier), and a large population averages that out.
+  o.polish.population = 48;
   o.polish.digits = 3;
   o.polish.threads = 2;
-  o.polish.duration = 8.0;
+  o.polish.duration = 5.0;
+  o.polish.angle_words = true;
+  // The words keep their promises (word_penalty) throughout: any breach costs steeply.
+  o.polish.word_penalty_max = 0.0;
   o.polish.minimum_inertia = 0.01;
   o.polish.thigh_rmse_max = 3.7;
   o.polish.knee_rmse_max = 3.7;
   o.polish.ankle_rmse_max = 3.7;
-  o.polish.sigma = 0.15;
+  o.polish.sigma = 0.3;
   // A clip's timing is part of its style: its stance share and cadence are held firmly.
   o.polish.weights.stance_outside_range = 20.0;
   o.polish.weights.cycle_time_outside_range = 2000.0;
@@ -138,6 +146,58 @@ ClipScore score_clip(const gait::ControllerSet& set, const TrainClip& clip, doub
   score.stance = score.report.stance_percent;
   score.cadence = score.report.cadence;
   return score;
+}
+
+GridCheck check_grid(const gait::ControllerSet& set) {
+  GridCheck check;
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  for (const double step : {0.50, 0.60, 0.70, 0.85}) {
+    for (const double stature : {1.50, 1.75, 2.00}) {
+      ++check.walks;
+      char walk[64];
+      std::snprintf(walk, sizeof walk, "%.2f m at %.2f m: ", step, stature);
+      std::vector<std::string> missed;
+      try {
+        gait::WalkerOptions wo;
+        wo.segments = rig::segments_from_stature(stature);
+        wo.step_length = step;
+        gait::Walker walker(set, wo, flat);
+        const eval::Motion motion = eval::record(walker, 10.0, 120.0);
+        missed = eval::missed_contact_bounds(eval::evaluate(motion, flat, nullptr, step));
+      } catch (const std::exception& e) {
+        missed = {e.what()};
+      }
+      if (missed.empty()) {
+        ++check.within;
+        continue;
+      }
+      std::string line = walk;
+      for (std::size_t k = 0; k < missed.size(); ++k)
+        line += (k > 0 ? "; " : "") + missed[k];
+      check.misses.push_back(line);
+    }
+  }
+  return check;
+}
+
+StartsCheck check_starts(const gait::ControllerSet& set, const rig::Segments& body, double step,
+                         int count) {
+  StartsCheck check;
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::WalkerOptions wo;
+  wo.segments = body;
+  wo.step_length = step;
+  for (const std::uint64_t seed : recovery_seeds(count)) {
+    ++check.starts;
+    try {
+      const eval::RecoveryReport r = eval::walk_from_random_start(set, wo, seed, flat);
+      if (!r.sound()) continue;
+      ++check.sound;
+      if (r.unsettled_steps(step) == 0) ++check.settled;
+    } catch (const std::exception&) {
+    }
+  }
+  return check;
 }
 
 TrainResult train(const gait::ControllerSet& base, std::span<const TrainClip> clips,

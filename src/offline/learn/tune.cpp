@@ -1,5 +1,6 @@
 #include "fuzzygait/learn/tune.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -18,19 +19,23 @@ namespace fuzzygait::learn {
 
 using detail::round_significant;
 
-SetParameters::SetParameters(const gait::ControllerSet& base, double minimum_inertia)
+SetParameters::SetParameters(const gait::ControllerSet& base, double minimum_inertia,
+                             bool angle_words)
     : base_(base), minimum_inertia_(minimum_inertia) {
   for (std::size_t s = 0; s < base.controllers.size(); ++s) {
     const fuzzy::Engine& e = base.controllers[s].engine();
     const bool hip =
         s == static_cast<std::size_t>(gait::slot(gait::LegPhase::Swing, gait::Joint::Hip)) ||
         s == static_cast<std::size_t>(gait::slot(gait::LegPhase::Stance, gait::Joint::Hip));
-    for (const fuzzy::Term& t : e.outputs.at(0).terms) {
-      if (t.kind != fuzzy::TermKind::Constant) continue;
+    const std::vector<fuzzy::Term>& terms = e.outputs.at(0).terms;
+    for (std::size_t t = 0; t < terms.size(); ++t) {
+      if (terms[t].kind != fuzzy::TermKind::Constant) continue;
+      values_.push_back({Kind::Output, s, 0, t});
       scales_.push_back(hip ? 2.0 : 200.0);
-      start_.push_back(t.parameters[0]);
+      start_.push_back(terms[t].parameters[0]);
     }
   }
+  values_.push_back({Kind::Inertia, 0, 0, 0});
   scales_.push_back(0.02);
   start_.push_back(std::max(base.inertia, minimum_inertia_));
   // Interior knots of the inputs of partition controllers: when along its progress a joint
@@ -40,10 +45,11 @@ SetParameters::SetParameters(const gait::ControllerSet& base, double minimum_ine
     const fuzzy::Engine& e = base.controllers[s].engine();
     for (std::size_t i = 0; i < e.inputs.size(); ++i) {
       const fuzzy::InputVariable& v = e.inputs[i];
-      // Only timing moves: the words of angles ("flat" is 0 degrees) keep their meaning.
-      if (v.name != "delta" && v.name != "other_delta") continue;
+      // Only timing moves, unless asked: the words of angles ("flat" is 0 degrees) keep their
+      // meaning.
+      if (!angle_words && v.name != "delta" && v.name != "other_delta") continue;
       for (std::size_t k = 1; k + 1 < v.terms.size(); ++k) {
-        knots_.push_back({s, i, k});
+        values_.push_back({Kind::Knot, s, i, k});
         scales_.push_back(0.15 * (v.maximum - v.minimum));
         start_.push_back(v.terms[k].parameters[1]);
       }
@@ -67,22 +73,28 @@ gait::ControllerSet SetParameters::apply(const std::vector<double>& scaled) cons
 
 gait::ControllerSet SetParameters::with_values(const std::vector<double>& values) const {
   std::vector<fuzzy::Engine> engines;
-  std::size_t k = 0;
-  for (const gait::Controller& c : base_.controllers) {
-    fuzzy::Engine e = c.engine();
-    for (fuzzy::Term& t : e.outputs.at(0).terms) {
-      if (t.kind == fuzzy::TermKind::Constant) t.parameters[0] = values[k++];
+  for (const gait::Controller& c : base_.controllers)
+    engines.push_back(c.engine());
+  double inertia = base_.inertia;
+  for (std::size_t k = 0; k < values_.size(); ++k) {
+    const Value& p = values_[k];
+    switch (p.kind) {
+      case Kind::Output:
+        engines[p.slot].outputs.at(0).terms[p.index].parameters[0] = values[k];
+        break;
+      case Kind::Inertia:
+        inertia = std::clamp(std::abs(values[k]), minimum_inertia_, 0.2);
+        break;
+      case Kind::Knot: {
+        fuzzy::InputVariable& v = engines[p.slot].inputs[p.input];
+        const double gap = 0.02 * (v.maximum - v.minimum);
+        const double low = v.terms[p.index - 1].parameters[1] + gap;
+        const double high = v.terms[p.index + 1].parameters[1] - gap;
+        // The knot is the peak of its term and the feet of its neighbours (a strong partition).
+        detail::move_knot(v, p.index, std::clamp(values[k], low, std::max(low, high)));
+        break;
+      }
     }
-    engines.push_back(std::move(e));
-  }
-  const double inertia = std::clamp(std::abs(values[k++]), minimum_inertia_, 0.2);
-  for (const Knot& knot : knots_) {
-    fuzzy::InputVariable& v = engines[knot.slot].inputs[knot.input];
-    const double gap = 0.02 * (v.maximum - v.minimum);
-    const double low = v.terms[knot.index - 1].parameters[1] + gap;
-    const double high = v.terms[knot.index + 1].parameters[1] - gap;
-    // The knot is the peak of its term and the feet of its neighbours (a strong partition).
-    detail::move_knot(v, knot.index, std::clamp(values[k++], low, std::max(low, high)));
   }
   return detail::with_engines(base_, engines, inertia);
 }
@@ -276,6 +288,7 @@ void validate(const TuneOptions& o) {
     within(field, high, low, most);  // the range's high end: from its low end up
   };
   within("duration", o.duration, 1.0, 3600.0);
+  within("warm-up", o.warm_up, 0.0, 3600.0);
   within("fps", o.fps, 1.0, 10000.0);
   ordered("cycle time range", o.cycle_time_min, o.cycle_time_max, 0.1, 10.0);
   ordered("stance range", o.stance_min, o.stance_max, 0.0, 100.0);
@@ -298,6 +311,7 @@ void validate(const TuneOptions& o) {
   within("digits", o.digits, 1, 17);
   within("threads", o.threads, 1, 1024);
   within("sigma", o.sigma, 1e-9, 10.0);
+  within("population", o.population, 0, 100000);
   within("recovery starts", static_cast<double>(o.recovery_seeds.size()), 0, 10000);
 }
 
@@ -321,6 +335,7 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
       gait::WalkerOptions wo;
       wo.segments = c.segments.value_or(rig::segments_from_stature(c.stature));
       wo.step_length = c.step_length;
+      wo.start.warm_up = options.warm_up;
       gait::Walker walker(set, wo, ground);
       const eval::Motion motion = eval::record(walker, options.duration, options.fps);
       const eval::GaitReport r = eval::evaluate(motion, ground, c.reference, c.step_length);
@@ -438,9 +453,10 @@ double candidate_cost(const std::function<gait::ControllerSet()>& make,
 
 TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
   validate(options);
-  const SetParameters parameters(start, options.minimum_inertia);
+  const SetParameters parameters(start, options.minimum_inertia, options.angle_words);
   CmaesOptions cma;
   cma.sigma = options.sigma;
+  cma.population = options.population;
   cma.max_generations = options.generations;
   cma.seed = options.seed;
   cma.threads = options.threads;
@@ -459,7 +475,7 @@ TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
   out.evaluations = r.evaluations;
   if (options.polish_generations <= 0) {
     // The values as the set holds them, rounded.
-    const SetParameters tuned(out.set, options.minimum_inertia);
+    const SetParameters tuned(out.set, options.minimum_inertia, options.angle_words);
     out.rounded = tuned.rounded(tuned.values(), options.digits);
   } else {
     // The written values are rounded for the artist: polish the result where the cost sees
