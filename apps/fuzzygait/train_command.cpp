@@ -43,6 +43,7 @@ struct TrainCommandOptions {
   ClipFlags reading;
   learn::TrainOptions train = learn::default_train_options();
   bool no_fits = false;
+  bool base_structure = false;
 };
 
 std::string fixed(double value, int decimals) {
@@ -126,17 +127,24 @@ std::string checks(const gait::ControllerSet& set, const MeanBody& body, int sta
 }
 
 // The words whose numbers moved, base -> trained, one line each.
+// (A word the training added has no base value: "new".)
 std::vector<std::string> moved_values(const gait::ControllerSet& base,
                                       const gait::ControllerSet& trained) {
   const learn::SetNetwork before(base);
   const learn::SetNetwork after(trained);
   std::vector<std::string> lines;
-  for (std::size_t i = 0; i < before.size(); ++i) {
-    const double a = before.values()[i];
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    const std::string& name = after.weight(i).name;
+    const std::size_t was = before.find(name);
     const double b = after.values()[i];
-    if (a == b) continue;
     char line[200];
-    std::snprintf(line, sizeof line, "%-40s %10.4g -> %.4g", before.weight(i).name.c_str(), a, b);
+    if (was == before.size()) {
+      std::snprintf(line, sizeof line, "%-40s %10s -> %.4g", name.c_str(), "new", b);
+    } else {
+      const double a = before.values()[was];
+      if (a == b) continue;
+      std::snprintf(line, sizeof line, "%-40s %10.4g -> %.4g", name.c_str(), a, b);
+    }
     lines.push_back(line);
   }
   return lines;
@@ -183,6 +191,8 @@ void add_train_command(CLI::App& app) {
                    "Random start poses that must settle into the gait while polishing")
       ->check(CLI::Range(0, 10000));
   train->add_flag("--no-fits", o->no_fits, "Skip the fits: the closed-loop polish alone");
+  train->add_flag("--base-structure", o->base_structure,
+                  "Keep the base set's words: add none where its rules cannot follow the clips");
   train->footer(
       "Writes the set (manifest.json with the clips' body and step, and its FLL files) into\n"
       "the folder, with report.txt and report.json (error per joint before and after, the values\n"
@@ -242,6 +252,7 @@ void add_train_command(CLI::App& app) {
     }
     learn::TrainOptions options = o->train;
     options.fits = !o->no_fits;
+    options.structure = !o->base_structure;
     options.progress = [](const learn::TrainProgress& p) {
       const bool scored = !p.rmse.empty();
       if (!scored && p.iteration % 10 != 0) return;
@@ -325,6 +336,21 @@ void add_train_command(CLI::App& app) {
     }
     json["clips"] = per_clip;
     text += "\n" + checks(trained, clips_body, o->check_starts, json);
+    if (!result.added.empty()) {
+      text += "\nstructure added (the base's rules could not follow the clips):\n";
+      nlohmann::ordered_json added = nlohmann::json::array();
+      for (const learn::AddedWord& w : result.added) {
+        const std::string slot(gait::slot_name(w.slot));
+        text += "  " + slot + ": '" + w.input + " is " + w.word + "', peaking at " +
+                fixed(w.peak, 1) + ", its rules those of '" + w.like + "': " + w.why + "\n";
+        added.push_back({{"slot", slot},
+                         {"input", w.input},
+                         {"word", w.word},
+                         {"peak", w.peak},
+                         {"rules_like", w.like}});
+      }
+      json["structure_added"] = added;
+    }
     text += "\nstages:\n";
     nlohmann::ordered_json stages = nlohmann::json::array();
     for (const learn::StageRecord& s : result.stages) {

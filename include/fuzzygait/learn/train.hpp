@@ -22,6 +22,7 @@
 #include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/gait/controllers.hpp"
 #include "fuzzygait/learn/fit.hpp"
+#include "fuzzygait/learn/structure.hpp"
 #include "fuzzygait/learn/tune.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
 
@@ -59,6 +60,8 @@ struct TrainOptions {
   bool grid = false;        // also price the level contact bounds on the step/stature grid
   int recovery_starts = 0;  // random starts that must settle into the gait
   bool fits = true;         // run stages 1-3 (false: the polish alone)
+  // Add the learning structure (learning_structure(): words the base's rules lack) first.
+  bool structure = true;
   std::function<void(const TrainProgress&)> progress;
   std::function<bool()> stop;  // true: stop after the current iteration, keeping the best set
 };
@@ -109,6 +112,7 @@ struct StageRecord {
 
 struct TrainResult {
   gait::ControllerSet set;        // the trained set, rounded
+  std::vector<AddedWord> added;   // the structure added to the base (their peaks as trained)
   std::vector<ClipScore> before;  // the base set, clip by clip
   std::vector<ClipScore> after;   // the trained set
   std::vector<StageRecord> stages;
@@ -119,7 +123,8 @@ struct TrainResult {
 };
 
 // Trains `base` (every slot a partition controller) on the clips. The set's name, description
-// and manifest are the base's; the caller names it.
+// and manifest are the base's; the caller names it. With options.structure the set has the words
+// of learning_structure() too.
 TrainResult train(const gait::ControllerSet& base, std::span<const TrainClip> clips,
                   const TrainOptions& options);
 

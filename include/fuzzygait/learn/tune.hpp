@@ -125,6 +125,9 @@ struct CostWeights {
   // Per deg of toe angle off neutral, summed over the mean cycle's samples while the foot is
   // flat (10-30 %) and before landing (86-100 %).
   double toe_off_neutral = 0.1;
+  // Per squared step of SetParameters' scale that the set's values stray from TuneOptions::anchor
+  // (the weak pull toward a base set, for values the walks say little about); 0 switches it off.
+  double anchor = 0.0;
 };
 
 struct TuneOptions {
@@ -167,6 +170,8 @@ struct TuneOptions {
   // heel-off. No limit by default.
   double heel_bounce_max = std::numeric_limits<double>::infinity();
   CostWeights weights;  // what each term of walk_cost() charges
+  // The set whose values weights.anchor pulls toward (it must outlive the options), or none.
+  const gait::ControllerSet* anchor = nullptr;
   double fps = 120.0;
   int generations = 200;
   // Then this many generations on the values rounded to `digits` significant digits, the ones

@@ -204,8 +204,11 @@ TrainResult train(const gait::ControllerSet& base, std::span<const TrainClip> cl
                   const TrainOptions& options) {
   if (clips.empty()) throw std::invalid_argument("train: no clips");
   const Clock::time_point start = Clock::now();
-  const SetNetwork network(base);
   TrainResult result;
+  if (options.structure) result.added = learning_structure(base);
+  // The set the training starts from: the base with the added words.
+  const gait::ControllerSet first = with_words(base, result.added);
+  const SetNetwork network(first);
   auto stopped = [&options] { return options.stop && options.stop(); };
   auto scores = [&clips](const gait::ControllerSet& set) {
     std::vector<ClipScore> out;
@@ -247,6 +250,7 @@ TrainResult train(const gait::ControllerSet& base, std::span<const TrainClip> cl
     }
   }
   polish.recovery_seeds = recovery_seeds(options.recovery_starts);
+  polish.anchor = &first;
   polish.stop = options.stop;
   validate(polish);
   const ClosedLoop closed(network, polish);
@@ -255,15 +259,18 @@ TrainResult train(const gait::ControllerSet& base, std::span<const TrainClip> cl
                           .word_unit = options.fit.word_unit};
 
   result.before = scores(base);
+  result.cost_before = walk_cost(base, polish);
+  report("base", 0, result.cost_before, &base);
   std::vector<double> best = network.values();
   double best_cost = closed.cost(best);
-  result.cost_before = best_cost;
-  report("base", 0, best_cost, &base);
+  if (!result.added.empty()) {
+    result.stages.push_back({"structure", best_cost, static_cast<int>(result.added.size()), 0.0});
+  }
 
   if (options.fits) {
     std::vector<TrainingClip> data;
     for (const TrainClip& clip : clips) {
-      data.push_back(training_data(clip.motion, clip.ground, clip.step_length, base,
+      data.push_back(training_data(clip.motion, clip.ground, clip.step_length, first,
                                    {.time_step = gait::WalkerOptions{}.time_step}));
     }
     FitOptions fit = options.fit;
@@ -347,6 +354,10 @@ TrainResult train(const gait::ControllerSet& base, std::span<const TrainClip> cl
     result.stages.push_back({"polish", best_cost, 0, seconds_since(at)});
   }
   result.set = trained;
+  for (AddedWord& w : result.added) {
+    const std::string name = std::string(gait::slot_name(w.slot)) + "." + w.input + "." + w.word;
+    w.peak = best[network.find(name)];
+  }
   result.cost_after = best_cost;
   result.after = scores(trained);
   result.stopped = stopped();

@@ -262,6 +262,7 @@ void validate_weights(const CostWeights& w) {
       {"knee_peak_outside_range", w.knee_peak_outside_range, false},
       {"knee_peak_timing_outside_range", w.knee_peak_timing_outside_range, false},
       {"toe_off_neutral", w.toe_off_neutral, false},
+      {"anchor", w.anchor, false},
   };
   static_assert(sizeof(fields) / sizeof(fields[0]) * sizeof(double) == sizeof(CostWeights),
                 "every field of CostWeights is checked");
@@ -326,6 +327,15 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
       w.words * words + w.words_over_bound * std::max(0.0, words - options.word_penalty_max);
   if (report && words > 0.0) {
     *report += "words against their meaning: penalty " + std::to_string(words) + "\n";
+  }
+  if (options.anchor && w.anchor > 0.0) {
+    // Both sets' values in SetParameters' scaled units (the same parameters: the same words).
+    const std::vector<double> a = SetParameters(*options.anchor, 0.0, options.angle_words).values();
+    const std::vector<double> b = SetParameters(set, 0.0, options.angle_words).values();
+    double squares = 0.0;
+    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+      squares += (b[i] - a[i]) * (b[i] - a[i]);
+    total += w.anchor * squares;
   }
   for (std::uint64_t seed : options.recovery_seeds)
     total += recovery_cost(set, seed, w, report);
