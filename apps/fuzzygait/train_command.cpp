@@ -354,9 +354,13 @@ void add_train_command(CLI::App& app) {
     text += "\nstages:\n";
     nlohmann::ordered_json stages = nlohmann::json::array();
     for (const learn::StageRecord& s : result.stages) {
-      text += "  " + s.stage + ": cost " + fixed(s.cost, 2) +
-              (s.kept > 0 ? ", " + std::to_string(s.kept) + " kept" : "") + ", " +
-              fixed(s.seconds, 2) + " s\n";
+      const std::string kept =
+          s.kept == 0 ? ""
+          : s.stage == "structure"
+              ? ", " + std::to_string(s.kept) + (s.kept == 1 ? " word" : " words") + " added"
+              : ", " + std::to_string(s.kept) + " controllers' values kept";
+      text += "  " + s.stage + ": cost " + fixed(s.cost, 2) + kept + ", " + fixed(s.seconds, 2) +
+              " s\n";
       stages.push_back(
           {{"stage", s.stage}, {"cost", s.cost}, {"kept", s.kept}, {"seconds", s.seconds}});
     }

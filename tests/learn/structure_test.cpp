@@ -97,9 +97,10 @@ TEST(LearningStructure, AddsASlightKneeToBothKneesOfTheDefault) {
   EXPECT_EQ(words[0].peak, 15.0);  // halfway between straight (0) and bent (30)
   EXPECT_EQ(words[1].slot, gait::slot(gait::LegPhase::Stance, gait::Joint::Knee));
   EXPECT_EQ(words[1].peak, 10.0);  // between 0 and 20
+  EXPECT_EQ(words[0].like, "straight");
+  EXPECT_EQ(words[1].like, "bent");
   for (const learn::AddedWord& w : words) {
     EXPECT_EQ(w.word, "slight");
-    EXPECT_EQ(w.like, "straight");
     EXPECT_FALSE(w.why.empty());
   }
   // The structured set is a network with the new knots as weights; added twice, nothing new.

@@ -34,9 +34,10 @@ fuzzy::Engine with_word(const fuzzy::Engine& engine, const AddedWord& word);
 gait::ControllerSet with_words(const gait::ControllerSet& set, const std::vector<AddedWord>& words);
 
 // The words `fuzzygait train` adds where a set lacks them: a "slight" knee between "straight" and
-// "bent" in the swing knee (so that a swing can end on a slightly bent knee, as people land) and
-// in the stance knee (so that a loaded knee can hold a little bend through stance). Only where the
-// controller reads the knee with words "straight" and "bent" and has no "slight".
+// "bent" in the swing knee, answering as "straight" (so that a swing can end on a slightly bent
+// knee, as people land), and in the stance knee, answering as "bent" (a slightly bent planted
+// knee straightens through mid stance and folds at push-off). Only where the controller reads the
+// knee with words "straight" and "bent" and has no "slight".
 std::vector<AddedWord> learning_structure(const gait::ControllerSet& base);
 
 }  // namespace fuzzygait::learn

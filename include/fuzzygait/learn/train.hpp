@@ -106,7 +106,9 @@ StartsCheck check_starts(const gait::ControllerSet& set, const rig::Segments& bo
 struct StageRecord {
   std::string stage;
   double cost = 0.0;  // the closed-loop cost after the stage
-  int kept = 0;       // controllers whose fitted values were kept (fits), 0 for the polish
+  // Fits: the controllers (and the inertia, as one more) whose fitted values were kept;
+  // "structure": the words added; the polish: 0.
+  int kept = 0;
   double seconds = 0.0;
 };
 

@@ -27,6 +27,9 @@ class ClosedLoop {
   ClosedLoop(const SetNetwork& network, const TuneOptions& options)
       : network_(network), options_(options) {}
 
+  // Infinite for weights that make no set or a set that cannot walk a condition: a fit is kept
+  // only where it walks (walk_cost prices a failed walk at a fixed cost, which a poor walk can
+  // exceed).
   double cost(const std::vector<double>& w) const {
     gait::ControllerSet set;
     try {
@@ -34,7 +37,9 @@ class ClosedLoop {
     } catch (const std::invalid_argument&) {
       return std::numeric_limits<double>::infinity();
     }
-    return walk_cost(set, options_);
+    int failed = 0;
+    const double c = walk_cost(set, options_, nullptr, &failed);
+    return failed > 0 ? std::numeric_limits<double>::infinity() : c;
   }
 
   // Keeps from `candidate` what lowers the cost of `current` (cost `current_cost`): the whole of
