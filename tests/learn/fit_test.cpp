@@ -161,7 +161,7 @@ class Recovery : public ::testing::Test {
     truth_[weight(base, "swing_knee.velocity.flex_fast")] = 760.0;
     truth_[weight(base, "swing_knee.velocity.extend_fast")] = -700.0;
     truth_set_ = base.apply(truth_);
-    data_ = {data_of(walk(truth_set_, 6.0), truth_set_)};
+    data_ = {data_of(walk(truth_set_, 4.0), truth_set_)};
   }
   std::vector<double> truth_;
   gait::ControllerSet truth_set_;

@@ -33,8 +33,9 @@ learn::TrainClip clip(const std::string& name) {
 // A budget a test affords: a few seconds.
 learn::TrainOptions small_budget() {
   learn::TrainOptions o = learn::default_train_options();
-  o.polish.generations = 60;
-  o.polish.polish_generations = 15;
+  o.polish.generations = 40;
+  o.polish.polish_generations = 10;
+  o.polish.population = 24;
   return o;
 }
 
@@ -143,6 +144,20 @@ TEST_F(TrainedOn0701, KeepsTheBaseSetsRulesAndWordsWithReadableValues) {
   EXPECT_EQ(trained.terrain_controllers.size(), base.terrain_controllers.size());
 }
 
+// The same clips and options give the same set, to the bit (two threads and all).
+TEST(Training, TrainsTheSameSetAgain) {
+  const std::vector<learn::TrainClip> clips = {clip("08_02")};
+  learn::TrainOptions o = learn::default_train_options();
+  o.polish.generations = 6;
+  o.polish.polish_generations = 2;
+  o.polish.population = 12;
+  const learn::TrainResult first = learn::train(test::default_set(), clips, o);
+  const learn::TrainResult again = learn::train(test::default_set(), clips, o);
+  EXPECT_EQ(learn::SetNetwork(again.set).values(), learn::SetNetwork(first.set).values());
+  EXPECT_EQ(again.cost_after, first.cost_after);
+  EXPECT_NE(learn::SetNetwork(first.set).values(), learn::SetNetwork(test::default_set()).values());
+}
+
 TEST_F(TrainedOn0701, TheSetsManifestCarriesTheClipsBodyAndStep) {
   gait::ControllerSet trained = result_->set;
   const learn::TrainClip& c = clips_->at(0);
@@ -167,6 +182,7 @@ TEST(Training, StopsWhenAskedWithTheBestSetSoFar) {
   const std::vector<learn::TrainClip> clips = {clip("07_01")};
   learn::TrainOptions o = small_budget();
   o.polish.generations = 100000;
+  o.polish.population = 12;
   int polish_generations = 0;
   o.progress = [&](const learn::TrainProgress& p) {
     if (p.stage == "polish") ++polish_generations;

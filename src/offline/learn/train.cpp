@@ -125,6 +125,9 @@ TrainOptions default_train_options() {
   // A clip's timing is part of its style: its stance share and cadence are held firmly.
   o.polish.weights.stance_outside_range = 20.0;
   o.polish.weights.cycle_time_outside_range = 2000.0;
+  // The weak pull toward the set the polish starts from (the base with the added words): values
+  // the clips hardly move stay near the base's.
+  o.polish.weights.anchor = 1.0;
   o.fit.threads = 2;
   o.fit.shortest_inertia = o.polish.minimum_inertia;
   return o;
