@@ -45,9 +45,9 @@ std::string text_of(const fs::path& path) {
 
 TEST(TrainCommand, WritesTheSetItsReportAndTheClipsCurves) {
   const fs::path out = scratch("files");
-  const test::ProgramRun run =
-      test::run_program("train \"" + kClip.string() + "\" -o \"" + out.string() +
-                        "\" --generations 8 --polish 2 --name mine --check-starts 10");
+  const test::ProgramRun run = test::run_program(
+      "train \"" + kClip.string() + "\" -o \"" + out.string() +
+      "\" --generations 8 --polish 2 --name mine --check-starts 10 --fit-iterations 3");
   ASSERT_EQ(run.status, 0) << run.output;
   // Progress: stages, iterations, errors per joint.
   EXPECT_NE(run.output.find("commands iteration 0"), std::string::npos) << run.output;
@@ -114,8 +114,18 @@ TEST(TrainCommand, CtrlCStopsItWritingTheBestSetSoFar) {
   const std::string program = FUZZYGAIT_CLI;
   const std::string clip = kClip.string();
   const std::string folder = out.string();
-  const char* argv[] = {program.c_str(), "train",   clip.c_str(),     "-o", folder.c_str(),
-                        "--generations", "1000000", "--check-starts", "10", nullptr};
+  const char* argv[] = {program.c_str(),
+                        "train",
+                        clip.c_str(),
+                        "-o",
+                        folder.c_str(),
+                        "--generations",
+                        "1000000",
+                        "--check-starts",
+                        "10",
+                        "--fit-iterations",
+                        "3",
+                        nullptr};
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);

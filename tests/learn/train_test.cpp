@@ -33,6 +33,7 @@ learn::TrainClip clip(const std::string& name) {
 // A budget a test affords: a few seconds.
 learn::TrainOptions small_budget() {
   learn::TrainOptions o = learn::default_train_options();
+  o.fit.max_iterations = 5;
   o.polish.generations = 40;
   o.polish.polish_generations = 10;
   o.polish.population = 24;
@@ -65,49 +66,52 @@ TEST(TrainClip, RefusesAClipWithoutACycle) {
   }
 }
 
+// One short training on 07_01, checked for what it promises (one test: each test runs in a
+// process of its own, and a training is the test's cost).
 class TrainedOn0701 : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    clips_ = new std::vector<learn::TrainClip>{clip("07_01")};
-    result_ = new learn::TrainResult(learn::train(test::default_set(), *clips_, small_budget()));
+  void SetUp() override {
+    clips_ = {clip("07_01")};
+    result_ = learn::train(test::default_set(), clips_, small_budget());
   }
-  static void TearDownTestSuite() {
-    delete result_;
-    delete clips_;
-  }
-  static std::vector<learn::TrainClip>* clips_;
-  static learn::TrainResult* result_;
+  // The stated margin: the three curves' RMSE together at most 60 % of the base's, the knee alone
+  // under half, the timing within the bounds.
+  void WalksTheClipsBodyCloserToTheClipThanTheBase() const;
+  // The base's rules and words, and the words the training added (a slight knee in both knees).
+  void KeepsTheBaseSetsRulesAndWordsWithReadableValues() const;
+  std::vector<learn::TrainClip> clips_;
+  learn::TrainResult result_;
 };
-std::vector<learn::TrainClip>* TrainedOn0701::clips_ = nullptr;
-learn::TrainResult* TrainedOn0701::result_ = nullptr;
 
-// The stated margin: the three curves' RMSE together at most 60 % of the base's, the knee alone
-// under half, the timing within the bounds.
-TEST_F(TrainedOn0701, WalksTheClipsBodyCloserToTheClipThanTheBase) {
-  const learn::ClipScore& before = result_->before.at(0);
-  const learn::ClipScore& after = result_->after.at(0);
+TEST_F(TrainedOn0701, WalksCloserToTheClipKeepingTheRulesWordsAndReadableValues) {
+  WalksTheClipsBodyCloserToTheClipThanTheBase();
+  KeepsTheBaseSetsRulesAndWordsWithReadableValues();
+}
+
+void TrainedOn0701::WalksTheClipsBodyCloserToTheClipThanTheBase() const {
+  const learn::ClipScore& before = result_.before.at(0);
+  const learn::ClipScore& after = result_.after.at(0);
   ASSERT_TRUE(before.walked);
   ASSERT_TRUE(after.walked);
   EXPECT_LT(sum(after), 0.6 * sum(before))
       << "before " << before.thigh << " " << before.knee << " " << before.ankle << ", after "
       << after.thigh << " " << after.knee << " " << after.ankle;
   EXPECT_LT(after.knee, 0.5 * before.knee);
-  const learn::TrainClip& c = clips_->at(0);
+  const learn::TrainClip& c = clips_.at(0);
   EXPECT_NEAR(after.stance, c.report.stance_percent, 3.0);
   EXPECT_NEAR(after.cadence, c.report.cadence, 0.05 * c.report.cadence);
-  EXPECT_LT(result_->cost_after, result_->cost_before);
-  EXPECT_FALSE(result_->stopped);
+  EXPECT_LT(result_.cost_after, result_.cost_before);
+  EXPECT_FALSE(result_.stopped);
   // Each stage is on record, the polish last.
-  ASSERT_FALSE(result_->stages.empty());
-  EXPECT_EQ(result_->stages.back().stage, "polish");
+  ASSERT_FALSE(result_.stages.empty());
+  EXPECT_EQ(result_.stages.back().stage, "polish");
 }
 
-// The base's rules and words, and the words the training added (a slight knee in both knees).
-TEST_F(TrainedOn0701, KeepsTheBaseSetsRulesAndWordsWithReadableValues) {
+void TrainedOn0701::KeepsTheBaseSetsRulesAndWordsWithReadableValues() const {
   const gait::ControllerSet& base = test::default_set();
-  const gait::ControllerSet& trained = result_->set;
+  const gait::ControllerSet& trained = result_.set;
   EXPECT_EQ(learn::word_penalty(trained), 0.0);
-  ASSERT_EQ(result_->added.size(), 2u);
+  ASSERT_EQ(result_.added.size(), 2u);
   const learn::SetNetwork before(base);
   const learn::SetNetwork after(trained);      // every slot still a partition controller
   EXPECT_EQ(after.size(), before.size() + 2);  // the two new words' peaks
@@ -127,7 +131,7 @@ TEST_F(TrainedOn0701, KeepsTheBaseSetsRulesAndWordsWithReadableValues) {
     moved += v != before.values()[was] ? 1 : 0;
   }
   EXPECT_GT(moved, 10);
-  for (const learn::AddedWord& w : result_->added)
+  for (const learn::AddedWord& w : result_.added)
     EXPECT_EQ(w.peak,
               after.values()[after.find(std::string(gait::slot_name(w.slot)) + ".knee.slight")]);
   for (int s = 0; s < gait::kSlotCount; ++s) {
@@ -148,6 +152,7 @@ TEST_F(TrainedOn0701, KeepsTheBaseSetsRulesAndWordsWithReadableValues) {
 TEST(Training, TrainsTheSameSetAgain) {
   const std::vector<learn::TrainClip> clips = {clip("08_02")};
   learn::TrainOptions o = learn::default_train_options();
+  o.fit.max_iterations = 3;
   o.polish.generations = 6;
   o.polish.polish_generations = 2;
   o.polish.population = 12;
@@ -158,9 +163,9 @@ TEST(Training, TrainsTheSameSetAgain) {
   EXPECT_NE(learn::SetNetwork(first.set).values(), learn::SetNetwork(test::default_set()).values());
 }
 
-TEST_F(TrainedOn0701, TheSetsManifestCarriesTheClipsBodyAndStep) {
-  gait::ControllerSet trained = result_->set;
-  const learn::TrainClip& c = clips_->at(0);
+TEST(TrainedSet, ItsManifestCarriesTheClipsBodyAndStep) {
+  gait::ControllerSet trained = test::default_set();
+  const learn::TrainClip c = clip("07_01");
   trained.body = c.motion.segments;
   trained.body_step_length = c.step_length;
   const fs::path dir = fs::path(::testing::TempDir()) / "fuzzygait_trained_body";
