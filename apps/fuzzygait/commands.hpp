@@ -41,5 +41,6 @@ void add_eval_command(CLI::App& app);
 void add_mocap_command(CLI::App& app);
 // `fuzzygait studio` (studio_command.cpp), in builds with the studio (FUZZYGAIT_STUDIO).
 void add_studio_command(CLI::App& app);
+void add_train_command(CLI::App& app);
 
 }  // namespace fuzzygait::cli

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
             "again where registry.npmjs.org can be reached");
       });
 #endif
+  fuzzygait::cli::add_train_command(app);
   int status = 0;
   try {
     app.parse(argc, argv);

@@ -10,6 +10,7 @@
 #include <system_error>
 #include <vector>
 
+#include "clip_options.hpp"
 #include "commands.hpp"
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/io/bvh.hpp"
@@ -29,10 +30,7 @@ namespace svg = plot::svg;
 struct MocapOptions {
   std::string clip;
   std::string prefix = "out/mocap";
-  std::string map;
-  std::string up;
-  std::optional<double> unit;
-  std::optional<std::size_t> skip;
+  ClipFlags reading;
   std::string reference = "schwartz2008_free";
 };
 
@@ -79,26 +77,13 @@ void add_mocap_command(CLI::App& app) {
       "mocap", "Read a walking clip (BVH) into the rig's angles and write a walk's files");
   mocap->add_option("clip", o->clip, "BVH file of a walk")->required();
   mocap->add_option("-o,--output", o->prefix, "Prefix of the files written (default out/mocap)");
-  mocap->add_option("--map", o->map,
-                    "JSON file naming the root and each leg's hip, knee, ankle and toe joints "
-                    "(default: CMU and common names)");
-  mocap->add_option("--up", o->up, "Up axis, y or z (default: detected)");
-  mocap->add_option("--unit", o->unit, "Metres per BVH unit (default: guessed from leg length)");
-  mocap->add_option("--skip", o->skip,
-                    "Leading frames to drop (default: a calibration first frame)");
+  add_clip_options(mocap, o->reading);
   mocap->add_option("--reference", o->reference, "Normative curves for the plot and summary");
   mocap->footer(
       "Writes PREFIX.csv (one row per frame, the walk CSV), PREFIX.terrain.csv (the floor),\n"
       "PREFIX.bvh (the rig's skeleton), PREFIX.svg (joint angles over the gait cycle against\n"
       "the normative band) and PREFIX.poses.svg. `fuzzygait eval PREFIX.csv` measures it.");
   mocap->callback([o]() {
-    if (!o->up.empty() && o->up != "y" && o->up != "z") {
-      throw std::invalid_argument("--up must be y or z, got '" + o->up + "'");
-    }
-    if (o->unit && !(*o->unit > 0.0 && *o->unit <= 1000.0)) {
-      throw std::invalid_argument("--unit must be metres per unit, above 0 and at most 1000, got " +
-                                  common::number_text(*o->unit));
-    }
     check_output_prefix(o->prefix, "-o");
     // PREFIX.bvh is written: it must not be the clip (`mocap walk.bvh -o walk`).
     std::error_code same_error;
@@ -108,12 +93,7 @@ void add_mocap_command(CLI::App& app) {
     }
     // Everything that can be refused is refused before any file is written.
     const eval::Normative reference = io::load_normative(o->reference);
-    io::ClipOptions options;
-    if (!o->map.empty()) options.mapping = io::read_leg_mapping_file(o->map);
-    if (!o->up.empty()) options.up = o->up == "y" ? io::UpAxis::Y : io::UpAxis::Z;
-    options.metres_per_unit = o->unit;
-    options.skip = o->skip;
-    const io::CapturedClip clip = io::read_clip(o->clip, options);
+    const io::CapturedClip clip = io::read_clip(o->clip, clip_options(o->reading));
     const eval::Motion& motion = clip.motion;
     print_summary(clip);
 

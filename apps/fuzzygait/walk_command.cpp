@@ -128,9 +128,11 @@ void add_walk_command(CLI::App& app) {
   auto o = std::make_shared<WalkOptions>();
   CLI::App* walk = app.add_subcommand(
       "walk", "Walk a character with fuzzy controllers and write its files and plots");
-  walk->add_option("--step", o->step, "Step length, metres heel to heel (default 0.70)");
+  walk->add_option("--step", o->step,
+                   "Step length, metres heel to heel (default 0.70, or a trained set's own)");
   walk->add_option("--stature", o->stature,
-                   "Body height, metres: segment lengths from anthropometric proportions");
+                   "Body height, metres: segment lengths from anthropometric proportions "
+                   "(default 1.75, or a trained set's own body)");
   walk->add_option("--thigh", o->thigh, "Thigh length, m (overrides the stature's)");
   walk->add_option("--shank", o->shank, "Shank length, m");
   walk->add_option("--ankle-height", o->ankle_height, "Ankle height above the sole, m");
@@ -177,14 +179,27 @@ void add_walk_command(CLI::App& app) {
                                         ? gait::ControllerSet::builtin(o->style)
                                         : gait::ControllerSet::load(o->controllers);
     gait::WalkerOptions options;
-    options.segments = rig::segments_from_stature(o->stature);
+    // A trained set walks its body and step (its manifest's "body") unless the command line
+    // gives a body or a step.
+    const bool body_given = walk->count("--stature") + walk->count("--thigh") +
+                                walk->count("--shank") + walk->count("--ankle-height") +
+                                walk->count("--heel") + walk->count("--ball") +
+                                walk->count("--toe") >
+                            0;
+    if (set.body && !body_given) {
+      options.segments = *set.body;
+    } else {
+      options.segments = rig::segments_from_stature(o->stature);
+    }
     options.segments.thigh = o->thigh.value_or(options.segments.thigh);
     options.segments.shank = o->shank.value_or(options.segments.shank);
     options.segments.ankle_height = o->ankle_height.value_or(options.segments.ankle_height);
     options.segments.heel = o->heel.value_or(options.segments.heel);
     options.segments.ball = o->ball.value_or(options.segments.ball);
     options.segments.toe = o->toe.value_or(options.segments.toe);
-    options.step_length = o->step;
+    const double step =
+        set.body_step_length && walk->count("--step") == 0 ? *set.body_step_length : o->step;
+    options.step_length = step;
     options.start = parse_start(o->start_pose);
     gait::Walker walker(set, options, ground);
     const eval::Motion motion = o->duration > 0.0 ? eval::record(walker, o->duration, o->fps)
@@ -210,7 +225,7 @@ void add_walk_command(CLI::App& app) {
     const eval::TerrainReport on_terrain = eval::evaluate_terrain(motion, ground);
     if (!level) warn_about_contact(eval::missed_contact_bounds(on_terrain));
     try {
-      const eval::GaitReport report = eval::evaluate(motion, ground, &reference, o->step);
+      const eval::GaitReport report = eval::evaluate(motion, ground, &reference, step);
       std::cout << "against " << reference.name << ":\n" << eval::to_text(report);
       if (level) warn_about_contact(eval::missed_contact_bounds(report));
       plot::plot_gait_curves(report, &reference, {.title = "fuzzygait walk, " + set.name})

@@ -336,6 +336,7 @@ constexpr WeightField kWeightFields[] = {
     {"knee_peak_outside_range", &learn::CostWeights::knee_peak_outside_range},
     {"knee_peak_timing_outside_range", &learn::CostWeights::knee_peak_timing_outside_range},
     {"toe_off_neutral", &learn::CostWeights::toe_off_neutral},
+    {"anchor", &learn::CostWeights::anchor},
 };
 static_assert(std::size(kWeightFields) * sizeof(double) == sizeof(learn::CostWeights),
               "the table lists every field of CostWeights");
@@ -364,7 +365,11 @@ TEST(WalkCost, EachWeightScalesItsOwnTermAlone) {
   for (const CostCase& c : cost_cases())
     at_defaults.push_back(learn::walk_cost(c.set, c.options));
   for (const WeightField& f : kWeightFields) {
-    if (is_threshold(f.name) || std::string(f.name) == "failed_walk") continue;  // below
+    // (The anchor, 0 by default, prices nothing without TuneOptions::anchor: its own test.)
+    if (is_threshold(f.name) || std::string(f.name) == "failed_walk" ||
+        std::string(f.name) == "anchor") {
+      continue;  // below
+    }
     // The walks' penetration is rounding error (under 1e-15 m): a large weight shows it.
     const double weight =
         std::string(f.name) == "penetration" ? 1e15 : learn::CostWeights{}.*f.field;
@@ -385,6 +390,26 @@ TEST(WalkCost, EachWeightScalesItsOwnTermAlone) {
     }
     EXPECT_TRUE(shown) << f.name << " prices nothing in the recorded cases";
   }
+}
+
+// The anchor's pull: weight times the squared distance, in SetParameters' scaled units, of the
+// set's values from the anchor set's; nothing without an anchor or with the set itself.
+TEST(WalkCost, TheAnchorPullsTowardItsSet) {
+  const CostCase& main = cost_cases()[1];
+  const learn::SetParameters p(main.set, main.options.minimum_inertia);
+  std::vector<double> moved = p.values();
+  moved[0] += 0.5;  // the first output, half a scaled unit
+  moved[3] -= 1.5;
+  const gait::ControllerSet other = p.apply(moved);
+  learn::TuneOptions o = main.options;
+  o.weights.anchor = 4.0;
+  EXPECT_EQ(learn::walk_cost(main.set, o), main.recorded);  // no anchor set: no pull
+  o.anchor = &main.set;
+  EXPECT_EQ(learn::walk_cost(main.set, o), main.recorded);  // at the anchor: no pull
+  o.anchor = &other;
+  EXPECT_NEAR(learn::walk_cost(main.set, o) - main.recorded, 4.0 * (0.25 + 2.25), 1e-9);
+  o.weights.anchor = -1.0;
+  EXPECT_THROW(learn::walk_cost(main.set, o), std::invalid_argument);
 }
 
 // Walks the main condition as walk_cost() does and measures it.

@@ -16,6 +16,7 @@
 #include "fuzzygait/fuzzy/engine.hpp"
 #include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/fuzzy/partition.hpp"
+#include "fuzzygait/rig/rig.hpp"
 
 namespace fuzzygait::gait {
 
@@ -108,7 +109,12 @@ struct ControllerSet {
   // Shortest step, in leg lengths, that this set walks without losing its rhythm (measured over
   // statures 1.50-2.00 m; docs/walk.md, "Step lengths"). The walker refuses shorter steps.
   double shortest_step = 0.46;
-  std::vector<Controller> controllers;  // indexed by slot()
+  // The body and step a trained set learnt its walk at (the manifest's "body": a motion capture
+  // clip's segment lengths and step, heel to heel); walkers built with this set's tools use them
+  // unless told otherwise. None for sets not trained on a body.
+  std::optional<rig::Segments> body;
+  std::optional<double> body_step_length;  // m
+  std::vector<Controller> controllers;     // indexed by slot()
 
   // How the controllers change with the ground (the manifest's "terrain": "slopes" for level
   // ground and ramps, "stairs"): words for the incline (such as down, level, up) peaking at given

@@ -18,6 +18,8 @@ struct CmaesOptions {
   int threads = 1;  // candidates of a generation evaluated in parallel
   // Called after each generation with (generation, best cost so far, best parameters).
   std::function<void(int, double, const std::vector<double>&)> progress;
+  // Asked after each generation: true stops there, with the best found so far.
+  std::function<bool()> stop;
 };
 
 struct CmaesResult {

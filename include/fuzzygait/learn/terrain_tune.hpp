@@ -12,14 +12,9 @@
 
 #include "fuzzygait/eval/terrain_report.hpp"
 #include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/learn/range.hpp"
 
 namespace fuzzygait::learn {
-
-// A range a group figure should stay in (NaN-free bounds; use +-infinity for one side).
-struct Range {
-  double min;
-  double max;
-};
 
 // What a walk on one kind of ground should show (degrees, percent, steps a minute), after
 // docs/results.md's sources: Riener et al. 2002, Protopapadaki et al. 2007, McFadyen & Winter 1988

@@ -7,16 +7,23 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/learn/range.hpp"
+#include "fuzzygait/rig/rig.hpp"
 
 namespace fuzzygait::learn {
 
+// One walk the tuner prices. The target is either normative curves at a stature (the defaults)
+// or a motion capture clip's mean cycle with the clip's body and timing (clip_condition()).
 struct WalkCondition {
   double stature = 1.75;
+  // The body's segment lengths (a clip's); none: from the stature.
+  std::optional<rig::Segments> segments{};
   double step_length = 0.70;
   // Curves scored against this reference with this weight (none: contact and timing only).
   const eval::Normative* reference = nullptr;
@@ -24,6 +31,15 @@ struct WalkCondition {
   // The curve errors pay steeply above TuneOptions' thigh/knee/ankle_rmse_max (the main
   // condition, whose curves the acceptance bounds judge).
   bool enforce_bounds = false;
+  // This walk's own ranges (a clip's timing and knee peak); where given they replace TuneOptions'
+  // stance_min/max, cycle_time_min/max, knee_peak_min/max and knee_peak_percent_min/max.
+  std::optional<Range> stance{};
+  std::optional<Range> cycle_time{};
+  std::optional<Range> knee_peak{};
+  std::optional<Range> knee_peak_percent{};
+  // The toes are priced for resting near neutral (weights.toe_off_neutral), as people's do; a
+  // clip's toes are its own.
+  bool toes_rest = true;
 };
 
 // The main condition: a 1.75 m adult's 0.70 m steps against `reference`, bounds enforced.
@@ -35,6 +51,24 @@ WalkCondition main_condition(const eval::Normative& reference);
 std::vector<WalkCondition> grid_conditions(const eval::Normative& reference,
                                            const eval::Normative& slower,
                                            const eval::Normative& faster);
+// A clip's mean cycle (evaluate() of its motion) as a reference: thigh, knee and ankle curves
+// (hip = thigh, pelvis tilt 0), named `name`.
+eval::Normative clip_reference(const eval::GaitReport& clip, const std::string& name);
+// How closely a walk must keep a clip's timing and knee peak in clip_condition(): its stance
+// share within `stance` points, its cycle time within `cycle_time` of the clip's (a share), its
+// peak swing knee flexion within `knee_peak` degrees and `knee_peak_percent` points of the cycle.
+struct ClipTolerances {
+  double stance = 1.0;
+  double cycle_time = 0.02;
+  double knee_peak = 3.0;
+  double knee_peak_percent = 3.0;
+};
+// The walk of a clip: its body, the step length `step` (m), its mean cycle `reference`
+// (clip_reference() of `clip`), its stance share, cycle time and knee peak within `tolerances`,
+// bounds enforced.
+WalkCondition clip_condition(const eval::Normative& reference, const eval::GaitReport& clip,
+                             const rig::Segments& segments, double step,
+                             const ClipTolerances& tolerances = {});
 // Seeds of `count` random starts that must settle into the gait (TuneOptions::recovery_seeds).
 std::vector<std::uint64_t> recovery_seeds(int count);
 
@@ -91,12 +125,17 @@ struct CostWeights {
   // Per deg of toe angle off neutral, summed over the mean cycle's samples while the foot is
   // flat (10-30 %) and before landing (86-100 %).
   double toe_off_neutral = 0.1;
+  // Per squared step of SetParameters' scale that the set's values stray from TuneOptions::anchor
+  // (the weak pull toward a base set, for values the walks say little about); 0 switches it off.
+  double anchor = 0.0;
 };
 
 struct TuneOptions {
   std::vector<WalkCondition> conditions;
   std::vector<std::uint64_t> recovery_seeds;  // random starts that must settle into the gait
   double duration = 10.0;                     // s per walk
+  // s each walk walks before it is recorded, from the walker's default start (StartPose).
+  double warm_up = 3.0;
   // Adults walk about 100-120 steps a minute at these step lengths: cycles of 1.0-1.2 s.
   double cycle_time_min = 1.0;
   double cycle_time_max = 1.2;
@@ -131,16 +170,25 @@ struct TuneOptions {
   // heel-off. No limit by default.
   double heel_bounce_max = std::numeric_limits<double>::infinity();
   CostWeights weights;  // what each term of walk_cost() charges
+  // The set whose values weights.anchor pulls toward (it must outlive the options), or none.
+  const gait::ControllerSet* anchor = nullptr;
   double fps = 120.0;
   int generations = 200;
   // Then this many generations on the values rounded to `digits` significant digits, the ones
   // written out for the artist.
   int polish_generations = 0;
   int digits = 3;
+  // Also tune where the words of joint angles and of the sole hold (SetParameters' angle_words).
+  bool angle_words = false;
   int threads = 2;
   std::uint64_t seed = 1;
   double sigma = 0.3;
+  int population = 0;  // candidates a generation; 0: CMA-ES's default, 4 + 3 ln(parameters)
   std::function<void(int generation, double cost)> progress;
+  // Asked after every generation; true ends the tuning there, with the best set found so far.
+  std::function<bool()> stop;
+  // Called after every generation with the best set so far (built only when this is set).
+  std::function<void(int generation, const gait::ControllerSet& best)> best;
 };
 
 // The parameters of a set: every Constant output term of every controller, the inertia, and the
@@ -148,7 +196,11 @@ struct TuneOptions {
 class SetParameters {
  public:
   // minimum_inertia (s) keeps joint velocities from jumping: tuning never goes below it.
-  explicit SetParameters(const gait::ControllerSet& base, double minimum_inertia = 0.02);
+  // Knots: of the progress inputs (delta, other_delta) only, when along its progress a joint
+  // changes its mind; with `angle_words`, of every input, the words of joint angles and of the
+  // sole too ("bent" at 30 degrees).
+  explicit SetParameters(const gait::ControllerSet& base, double minimum_inertia = 0.02,
+                         bool angle_words = false);
   std::size_t size() const { return scales_.size(); }
   // Scaled so that a change of 1 is a large change for every parameter.
   std::vector<double> values() const;
@@ -159,14 +211,16 @@ class SetParameters {
   gait::ControllerSet with_values(const std::vector<double>& values) const;
 
  private:
-  struct Knot {
+  enum class Kind { Output, Inertia, Knot };
+  struct Value {
+    Kind kind;
     std::size_t slot;
-    std::size_t input;
-    std::size_t index;
+    std::size_t input;  // Knot
+    std::size_t index;  // the output term, or the knot's term
   };
   gait::ControllerSet base_;
   double minimum_inertia_;
-  std::vector<Knot> knots_;
+  std::vector<Value> values_;
   std::vector<double> scales_;
   std::vector<double> start_;
 };

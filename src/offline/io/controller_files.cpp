@@ -22,6 +22,20 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
         std::round(rig::degrees(set.swing_knee_reference_sweep) * 1e6) / 1e6;
   }
   manifest["shortest_step_leg_lengths"] = set.shortest_step;
+  if (set.body && set.body_step_length) {
+    // To a tenth of a millimetre.
+    auto length = [](double metres) { return std::round(metres * 1e4) / 1e4; };
+    const rig::Segments& b = *set.body;
+    nlohmann::ordered_json body;
+    body["thigh_m"] = length(b.thigh);
+    body["shank_m"] = length(b.shank);
+    body["ankle_height_m"] = length(b.ankle_height);
+    body["heel_m"] = length(b.heel);
+    body["ball_m"] = length(b.ball);
+    body["toe_m"] = length(b.toe);
+    body["step_length_m"] = length(*set.body_step_length);
+    manifest["body"] = body;
+  }
   nlohmann::ordered_json files;
   for (int s = 0; s < gait::kSlotCount; ++s) {
     const std::string name = std::string(gait::slot_name(s)) + ".fll";

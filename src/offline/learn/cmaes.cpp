@@ -135,6 +135,7 @@ CmaesResult minimize(const std::function<double(const std::vector<double>&)>& co
     D = eigen.eigenvalues().cwiseMax(1e-20).cwiseSqrt();
     if (options.progress) options.progress(generation, result.best_cost, result.best);
     if (result.best_cost < options.target) break;
+    if (options.stop && options.stop()) break;
   }
   return result;
 }

@@ -1,5 +1,6 @@
 #include "fuzzygait/learn/tune.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -10,43 +11,31 @@
 #include "fuzzygait/eval/recovery.hpp"
 #include "fuzzygait/fuzzy/term.hpp"
 #include "fuzzygait/learn/cmaes.hpp"
+#include "offline/learn/set_edit.hpp"
+#include "offline/learn/words.hpp"
 #include "runtime/common/format.hpp"
 
 namespace fuzzygait::learn {
-namespace {
 
-double round_significant(double v, int digits) {
-  if (v == 0.0 || !std::isfinite(v)) return v;
-  const double magnitude =
-      std::pow(10.0, digits - 1 - static_cast<int>(std::floor(std::log10(std::abs(v)))));
-  return std::round(v * magnitude) / magnitude;
-}
+using detail::round_significant;
 
-gait::ControllerSet rebuild(const gait::ControllerSet& base, std::vector<fuzzy::Engine>& engines,
-                            double inertia) {
-  gait::ControllerSet set = base;
-  set.inertia = inertia;
-  for (std::size_t s = 0; s < engines.size(); ++s) {
-    set.controllers[s] = gait::Controller(std::move(engines[s]), base.controllers[s].source());
-  }
-  return set;
-}
-
-}  // namespace
-
-SetParameters::SetParameters(const gait::ControllerSet& base, double minimum_inertia)
+SetParameters::SetParameters(const gait::ControllerSet& base, double minimum_inertia,
+                             bool angle_words)
     : base_(base), minimum_inertia_(minimum_inertia) {
   for (std::size_t s = 0; s < base.controllers.size(); ++s) {
     const fuzzy::Engine& e = base.controllers[s].engine();
     const bool hip =
         s == static_cast<std::size_t>(gait::slot(gait::LegPhase::Swing, gait::Joint::Hip)) ||
         s == static_cast<std::size_t>(gait::slot(gait::LegPhase::Stance, gait::Joint::Hip));
-    for (const fuzzy::Term& t : e.outputs.at(0).terms) {
-      if (t.kind != fuzzy::TermKind::Constant) continue;
+    const std::vector<fuzzy::Term>& terms = e.outputs.at(0).terms;
+    for (std::size_t t = 0; t < terms.size(); ++t) {
+      if (terms[t].kind != fuzzy::TermKind::Constant) continue;
+      values_.push_back({Kind::Output, s, 0, t});
       scales_.push_back(hip ? 2.0 : 200.0);
-      start_.push_back(t.parameters[0]);
+      start_.push_back(terms[t].parameters[0]);
     }
   }
+  values_.push_back({Kind::Inertia, 0, 0, 0});
   scales_.push_back(0.02);
   start_.push_back(std::max(base.inertia, minimum_inertia_));
   // Interior knots of the inputs of partition controllers: when along its progress a joint
@@ -56,10 +45,11 @@ SetParameters::SetParameters(const gait::ControllerSet& base, double minimum_ine
     const fuzzy::Engine& e = base.controllers[s].engine();
     for (std::size_t i = 0; i < e.inputs.size(); ++i) {
       const fuzzy::InputVariable& v = e.inputs[i];
-      // Only timing moves: the words of angles ("flat" is 0 degrees) keep their meaning.
-      if (v.name != "delta" && v.name != "other_delta") continue;
+      // Only timing moves, unless asked: the words of angles ("flat" is 0 degrees) keep their
+      // meaning.
+      if (!angle_words && v.name != "delta" && v.name != "other_delta") continue;
       for (std::size_t k = 1; k + 1 < v.terms.size(); ++k) {
-        knots_.push_back({s, i, k});
+        values_.push_back({Kind::Knot, s, i, k});
         scales_.push_back(0.15 * (v.maximum - v.minimum));
         start_.push_back(v.terms[k].parameters[1]);
       }
@@ -83,27 +73,30 @@ gait::ControllerSet SetParameters::apply(const std::vector<double>& scaled) cons
 
 gait::ControllerSet SetParameters::with_values(const std::vector<double>& values) const {
   std::vector<fuzzy::Engine> engines;
-  std::size_t k = 0;
-  for (const gait::Controller& c : base_.controllers) {
-    fuzzy::Engine e = c.engine();
-    for (fuzzy::Term& t : e.outputs.at(0).terms) {
-      if (t.kind == fuzzy::TermKind::Constant) t.parameters[0] = values[k++];
+  for (const gait::Controller& c : base_.controllers)
+    engines.push_back(c.engine());
+  double inertia = base_.inertia;
+  for (std::size_t k = 0; k < values_.size(); ++k) {
+    const Value& p = values_[k];
+    switch (p.kind) {
+      case Kind::Output:
+        engines[p.slot].outputs.at(0).terms[p.index].parameters[0] = values[k];
+        break;
+      case Kind::Inertia:
+        inertia = std::clamp(std::abs(values[k]), minimum_inertia_, 0.2);
+        break;
+      case Kind::Knot: {
+        fuzzy::InputVariable& v = engines[p.slot].inputs[p.input];
+        const double gap = 0.02 * (v.maximum - v.minimum);
+        const double low = v.terms[p.index - 1].parameters[1] + gap;
+        const double high = v.terms[p.index + 1].parameters[1] - gap;
+        // The knot is the peak of its term and the feet of its neighbours (a strong partition).
+        detail::move_knot(v, p.index, std::clamp(values[k], low, std::max(low, high)));
+        break;
+      }
     }
-    engines.push_back(std::move(e));
   }
-  const double inertia = std::clamp(std::abs(values[k++]), minimum_inertia_, 0.2);
-  for (const Knot& knot : knots_) {
-    fuzzy::InputVariable& v = engines[knot.slot].inputs[knot.input];
-    const double gap = 0.02 * (v.maximum - v.minimum);
-    const double low = v.terms[knot.index - 1].parameters[1] + gap;
-    const double high = v.terms[knot.index + 1].parameters[1] - gap;
-    const double at = std::clamp(values[k++], low, std::max(low, high));
-    // The knot is the peak of its term and the feet of its neighbours (a strong partition).
-    v.terms[knot.index].parameters[1] = at;
-    v.terms[knot.index - 1].parameters[2] = at;
-    v.terms[knot.index + 1].parameters[0] = at;
-  }
-  return rebuild(base_, engines, inertia);
+  return detail::with_engines(base_, engines, inertia);
 }
 
 gait::ControllerSet SetParameters::rounded(const std::vector<double>& scaled,
@@ -122,45 +115,13 @@ double word_penalty(const gait::ControllerSet& set, const CostWeights& weights) 
   double penalty = 0.0;
   for (const gait::Controller& c : set.controllers) {
     const fuzzy::OutputVariable& out = c.engine().outputs.at(0);
-    const double scale = weights.word_unit * (out.maximum - out.minimum);
-    auto value = [&out](const std::string& word, double& v) {
-      const fuzzy::Term* t = out.find_term(word);
-      if (!t || t->kind != fuzzy::TermKind::Constant) return false;
-      v = t->parameters[0];
-      return true;
-    };
-    for (const fuzzy::Term& t : out.terms) {
-      if (t.kind != fuzzy::TermKind::Constant) continue;
-      const double v = t.parameters[0];
-      const std::string& w = t.name;
-      auto has = [&w](const char* part) { return w.find(part) != std::string::npos; };
-      if (w == "stay" || w == "hold") penalty += std::max(0.0, std::abs(v) - scale) / scale;
-      const bool positive = has("flex") || has("up") || has("roll") || has("settle") ||
-                            (w == "slow" || w == "fast" || w == "steady" || w == "late");
-      const bool negative =
-          has("extend") || has("down") || has("push") || has("lower") || w == "back";
-      if (positive) penalty += std::max(0.0, -v) / scale;
-      if (negative) penalty += std::max(0.0, v) / scale;
-      const std::size_t fast = w.find("_fast");
-      double base = 0.0;
-      if (fast != std::string::npos && value(w.substr(0, fast), base)) {
-        penalty += std::max(0.0, std::abs(base) - std::abs(v)) / scale;
-      }
-      const std::size_t slow = w.find("_slow");
-      if (slow != std::string::npos && value(w.substr(0, slow), base)) {
-        penalty += std::max(0.0, std::abs(v) - std::abs(base)) / scale;
-      }
+    const double unit = weights.word_unit * (out.maximum - out.minimum);
+    std::vector<double> values(out.terms.size(), 0.0);
+    for (std::size_t t = 0; t < out.terms.size(); ++t) {
+      if (out.terms[t].kind == fuzzy::TermKind::Constant) values[t] = out.terms[t].parameters[0];
     }
-    double slow = 0.0;
-    double fast = 0.0;
-    double steady = 0.0;
-    double late = 0.0;
-    if (value("slow", slow) && value("fast", fast)) penalty += std::max(0.0, slow - fast) / scale;
-    // The body's steady progress is faster than its slow start and its late finish.
-    if (value("steady", steady)) {
-      if (value("slow", slow)) penalty += std::max(0.0, slow - steady) / scale;
-      if (value("late", late)) penalty += std::max(0.0, late - steady) / scale;
-    }
+    for (const detail::WordPromise& p : detail::word_promises(out))
+      penalty += detail::broken_by(p, values.data(), unit);
   }
   return penalty;
 }
@@ -227,6 +188,33 @@ std::vector<WalkCondition> grid_conditions(const eval::Normative& reference,
   return conditions;
 }
 
+eval::Normative clip_reference(const eval::GaitReport& clip, const std::string& name) {
+  eval::Normative n;
+  n.name = name;
+  n.thigh = clip.thigh;
+  n.hip = clip.thigh;
+  n.knee = clip.knee;
+  n.ankle = clip.ankle;
+  return n;
+}
+
+WalkCondition clip_condition(const eval::Normative& reference, const eval::GaitReport& clip,
+                             const rig::Segments& segments, double step, const ClipTolerances& t) {
+  WalkCondition c;
+  c.segments = segments;
+  c.step_length = step;
+  c.reference = &reference;
+  c.enforce_bounds = true;
+  c.stance = Range{clip.stance_percent - t.stance, clip.stance_percent + t.stance};
+  c.cycle_time =
+      Range{clip.cycle_time * (1.0 - t.cycle_time), clip.cycle_time * (1.0 + t.cycle_time)};
+  c.knee_peak = Range{clip.knee_peak - t.knee_peak, clip.knee_peak + t.knee_peak};
+  c.knee_peak_percent = Range{clip.knee_peak_percent - t.knee_peak_percent,
+                              clip.knee_peak_percent + t.knee_peak_percent};
+  c.toes_rest = false;
+  return c;
+}
+
 std::vector<std::uint64_t> recovery_seeds(int count) {
   std::vector<std::uint64_t> seeds;
   for (int k = 0; k < count; ++k)
@@ -274,6 +262,7 @@ void validate_weights(const CostWeights& w) {
       {"knee_peak_outside_range", w.knee_peak_outside_range, false},
       {"knee_peak_timing_outside_range", w.knee_peak_timing_outside_range, false},
       {"toe_off_neutral", w.toe_off_neutral, false},
+      {"anchor", w.anchor, false},
   };
   static_assert(sizeof(fields) / sizeof(fields[0]) * sizeof(double) == sizeof(CostWeights),
                 "every field of CostWeights is checked");
@@ -300,6 +289,7 @@ void validate(const TuneOptions& o) {
     within(field, high, low, most);  // the range's high end: from its low end up
   };
   within("duration", o.duration, 1.0, 3600.0);
+  within("warm-up", o.warm_up, 0.0, 3600.0);
   within("fps", o.fps, 1.0, 10000.0);
   ordered("cycle time range", o.cycle_time_min, o.cycle_time_max, 0.1, 10.0);
   ordered("stance range", o.stance_min, o.stance_max, 0.0, 100.0);
@@ -322,6 +312,7 @@ void validate(const TuneOptions& o) {
   within("digits", o.digits, 1, 17);
   within("threads", o.threads, 1, 1024);
   within("sigma", o.sigma, 1e-9, 10.0);
+  within("population", o.population, 0, 100000);
   within("recovery starts", static_cast<double>(o.recovery_seeds.size()), 0, 10000);
 }
 
@@ -337,14 +328,24 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
   if (report && words > 0.0) {
     *report += "words against their meaning: penalty " + std::to_string(words) + "\n";
   }
+  if (options.anchor && w.anchor > 0.0) {
+    // Both sets' values in SetParameters' scaled units (the same parameters: the same words).
+    const std::vector<double> a = SetParameters(*options.anchor, 0.0, options.angle_words).values();
+    const std::vector<double> b = SetParameters(set, 0.0, options.angle_words).values();
+    double squares = 0.0;
+    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+      squares += (b[i] - a[i]) * (b[i] - a[i]);
+    total += w.anchor * squares;
+  }
   for (std::uint64_t seed : options.recovery_seeds)
     total += recovery_cost(set, seed, w, report);
   for (const WalkCondition& c : options.conditions) {
     double cost = 0.0;
     try {
       gait::WalkerOptions wo;
-      wo.segments = rig::segments_from_stature(c.stature);
+      wo.segments = c.segments.value_or(rig::segments_from_stature(c.stature));
       wo.step_length = c.step_length;
+      wo.start.warm_up = options.warm_up;
       gait::Walker walker(set, wo, ground);
       const eval::Motion motion = eval::record(walker, options.duration, options.fps);
       const eval::GaitReport r = eval::evaluate(motion, ground, c.reference, c.step_length);
@@ -358,12 +359,17 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
               w.toe_clearance_wanted;
       cost +=
           w.cycle_time_sd * r.cycle_time_sd + w.step_length_sd * r.step_length_sd / c.step_length;
-      cost +=
-          w.stance_outside_range * over(r.stance_percent, options.stance_min, options.stance_max);
+      const Range stance = c.stance.value_or(Range{options.stance_min, options.stance_max});
+      const Range cycle =
+          c.cycle_time.value_or(Range{options.cycle_time_min, options.cycle_time_max});
+      const Range knee_peak =
+          c.knee_peak.value_or(Range{options.knee_peak_min, options.knee_peak_max});
+      const Range knee_peak_percent = c.knee_peak_percent.value_or(
+          Range{options.knee_peak_percent_min, options.knee_peak_percent_max});
+      cost += w.stance_outside_range * over(r.stance_percent, stance.min, stance.max);
       cost += w.pelvis_outside_range * over(1000.0 * r.pelvis_vertical_range,
                                             options.pelvis_range_min, options.pelvis_range_max);
-      cost += w.cycle_time_outside_range *
-              over(r.cycle_time, options.cycle_time_min, options.cycle_time_max);
+      cost += w.cycle_time_outside_range * over(r.cycle_time, cycle.min, cycle.max);
       // Velocities must not jump where a phase hands a joint to another controller.
       const double jump_ratio =
           r.max_velocity_jump / std::max(r.typical_velocity_change, kLeastVelocityChange);
@@ -390,18 +396,16 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
                        std::max(0.0, s->acceleration_ratio() - options.acceleration_ratio_max);
           }
         }
-        realism += w.knee_peak_outside_range *
-                       over(r.knee_peak, options.knee_peak_min, options.knee_peak_max) +
-                   w.knee_peak_timing_outside_range * over(r.knee_peak_percent,
-                                                           options.knee_peak_percent_min,
-                                                           options.knee_peak_percent_max);
+        realism += w.knee_peak_outside_range * over(r.knee_peak, knee_peak.min, knee_peak.max) +
+                   w.knee_peak_timing_outside_range *
+                       over(r.knee_peak_percent, knee_peak_percent.min, knee_peak_percent.max);
         // The toes rest near neutral while the foot is flat and again before landing.
         double toe = 0.0;
         for (const SampleRange& rest : kToeRestSamples) {
           for (int k = rest.first; k <= rest.last; ++k)
             toe += std::abs(r.toe.mean[static_cast<std::size_t>(k)]);
         }
-        realism += w.toe_off_neutral * toe;
+        if (c.toes_rest) realism += w.toe_off_neutral * toe;
         cost += c.realism_weight * realism;
       }
       if (report) {
@@ -410,8 +414,9 @@ double walk_cost(const gait::ControllerSet& set, const TuneOptions& options, std
             line, sizeof line,
             "stature %.2f step %.2f: cost %.2f | step %.3f (%.1f%%) stance %.1f cycle %.3f "
             "clear %.1f mm knee %.0f@%.0f%%",
-            c.stature, c.step_length, cost, r.step_length, step_error, r.stance_percent,
-            r.cycle_time, 1000.0 * r.min_toe_clearance, r.knee_peak, r.knee_peak_percent);
+            c.segments ? c.segments->leg_length() / 0.53 : c.stature, c.step_length, cost,
+            r.step_length, step_error, r.stance_percent, r.cycle_time, 1000.0 * r.min_toe_clearance,
+            r.knee_peak, r.knee_peak_percent);
         *report += line;
         if (c.reference) {
           std::snprintf(line, sizeof line,
@@ -458,15 +463,18 @@ double candidate_cost(const std::function<gait::ControllerSet()>& make,
 
 TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
   validate(options);
-  const SetParameters parameters(start, options.minimum_inertia);
+  const SetParameters parameters(start, options.minimum_inertia, options.angle_words);
   CmaesOptions cma;
   cma.sigma = options.sigma;
+  cma.population = options.population;
   cma.max_generations = options.generations;
   cma.seed = options.seed;
   cma.threads = options.threads;
-  cma.progress = [&options](int generation, double best, const std::vector<double>&) {
+  cma.progress = [&](int generation, double best, const std::vector<double>& x) {
     if (options.progress) options.progress(generation, best);
+    if (options.best) options.best(generation, parameters.apply(x));
   };
+  cma.stop = options.stop;
   auto cost = [&](const std::vector<double>& x) {
     return candidate_cost([&] { return parameters.apply(x); }, options);
   };
@@ -477,7 +485,7 @@ TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
   out.evaluations = r.evaluations;
   if (options.polish_generations <= 0) {
     // The values as the set holds them, rounded.
-    const SetParameters tuned(out.set, options.minimum_inertia);
+    const SetParameters tuned(out.set, options.minimum_inertia, options.angle_words);
     out.rounded = tuned.rounded(tuned.values(), options.digits);
   } else {
     // The written values are rounded for the artist: polish the result where the cost sees
@@ -489,8 +497,11 @@ TuneResult tune(const gait::ControllerSet& start, const TuneOptions& options) {
     polish.sigma = 0.25 * options.sigma;
     polish.max_generations = options.polish_generations;
     polish.seed = options.seed + 1;
-    polish.progress = [&options](int generation, double best, const std::vector<double>&) {
+    polish.progress = [&](int generation, double best, const std::vector<double>& x) {
       if (options.progress) options.progress(options.generations + generation, best);
+      if (options.best) {
+        options.best(options.generations + generation, parameters.rounded(x, options.digits));
+      }
     };
     const CmaesResult p = minimize(rounded_cost, r.best, polish);
     out.set = parameters.rounded(p.best, options.digits);

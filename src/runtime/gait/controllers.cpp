@@ -57,6 +57,44 @@ std::size_t slot_index(std::string_view name) {
   return kSlotNames.size();
 }
 
+// The manifest's "body": {"thigh_m": ..., "shank_m": ..., "ankle_height_m": ..., "heel_m": ...,
+// "ball_m": ..., "toe_m": ..., "step_length_m": ...}, every field required.
+void read_body(const Value& body, const std::string& source, ControllerSet& set) {
+  if (body.kind != Value::Kind::Object) {
+    throw std::invalid_argument(where(source, body) + "'body' must be an object of lengths");
+  }
+  for (const auto& [key, value] : body.object) {
+    const bool known = key == "thigh_m" || key == "shank_m" || key == "ankle_height_m" ||
+                       key == "heel_m" || key == "ball_m" || key == "toe_m" ||
+                       key == "step_length_m";
+    if (!known) {
+      throw std::invalid_argument(where(source, value) + "'body' has no field '" + key +
+                                  "' (thigh_m, shank_m, ankle_height_m, heel_m, ball_m, toe_m, "
+                                  "step_length_m)");
+    }
+  }
+  auto length = [&](const char* key) {
+    if (!body.find(key)) {
+      throw std::invalid_argument(where(source, body) + "'body' needs '" + key + "'");
+    }
+    return number(body, key, 0.0, 0.001, 10.0, source);
+  };
+  rig::Segments s;
+  s.thigh = length("thigh_m");
+  s.shank = length("shank_m");
+  s.ankle_height = length("ankle_height_m");
+  s.heel = length("heel_m");
+  s.ball = length("ball_m");
+  s.toe = length("toe_m");
+  set.body_step_length = length("step_length_m");
+  try {
+    rig::validate(s);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where(source, body) + "'body': " + e.what());
+  }
+  set.body = s;
+}
+
 // One kind of ground of the manifest's "terrain": {"incline_deg": {WORD: PEAK, ...}, "ascent":
 // [WORD...], "landing_knee_deg": {WORD: DEG}, "controllers": {SLOT: {WORD: FILE}}}.
 void read_ground(const Value& ground, const std::string& name,
@@ -377,6 +415,7 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
       number(manifest, "swing_knee_reference_sweep_deg", 0.0, 0.0, 180.0, manifest_source));
   set.shortest_step =
       number(manifest, "shortest_step_leg_lengths", 0.46, 0.1, 1.2, manifest_source);
+  if (const Value* body = manifest.find("body")) read_body(*body, manifest_source, set);
   const Value* names = manifest.find("controllers");
   if (!names || names->kind != Value::Kind::Object) {
     throw std::invalid_argument(where(manifest_source, names ? *names : manifest) +

@@ -15,6 +15,7 @@
 #include "fuzzygait/fuzzy/term.hpp"
 #include "runtime/common/format.hpp"
 #include "runtime/common/splitmix64.hpp"
+#include "runtime/gait/leg_metrics.hpp"
 #include "runtime/gait/walker_stages.hpp"
 #include "runtime/rig/trigonometry.hpp"
 #include "runtime/simd/lanes.hpp"
@@ -23,8 +24,12 @@ namespace fuzzygait::gait {
 namespace {
 
 using detail::ControllerBackend;
+using detail::foot_of;
+using detail::inclination;
+using detail::shank_of;
 using detail::StepData;
 using detail::SubSteps;
+using detail::thigh_of;
 using detail::WalkerStages;
 using fuzzygait::common::number_text;
 using rig::LegAngles;
@@ -41,10 +46,6 @@ constexpr double kLandingDelta = 0.8;
 // Mid-swing, the clearance reflex keeps a swinging foot this far above the ground (m); lifting it
 // well clear is the swing controllers' job.
 constexpr double kSwingClearance = 0.01;
-// Fastest each joint turns (rad/s; hip, knee, ankle, toe), about 1150 deg/s, a sprinter's knee:
-// the shipped sets' walks peak at 9, 20, 8 and 27 over the step/stature grid (the toes are turned
-// by the ground).
-constexpr rig::LegAngles kMaxJointSpeed{20.0, 20.0, 20.0, 40.0};
 // Longest double support lasts before the newly planted leg takes the weight, s (walks hand over
 // in 0.1 to 0.2).
 constexpr double kLongestDoubleSupport = 0.4;
@@ -81,39 +82,6 @@ constexpr double kStraightLanding = 0.02;
 // m: a toe tip this close to the ground rests on it.
 constexpr double kToesResting = 0.0005;
 constexpr double kLongestTimeStep = 0.05;
-
-double thigh_of(double tilt, const LegAngles& a) {
-  return a.hip - tilt;
-}
-double shank_of(double tilt, const LegAngles& a) {
-  return a.hip - tilt - a.knee;
-}
-double foot_of(double tilt, const LegAngles& a) {
-  return shank_of(tilt, a) + a.ankle;
-}
-
-// Inclination of the line from `from` to `to`, from the downward vertical, forward positive.
-double inclination(Point from, Point to) {
-  return arctan2(to.x - from.x, from.y - to.y);
-}
-
-// The paper's delta: -1 at the start angle, 0 when the thigh is vertical, +1 at the end angle
-// (linear between start and end when both lie on the same side of the vertical).
-double progress(double theta, double start, double end) {
-  double d;
-  if ((start < 0.0 && end > 0.0) || (start > 0.0 && end < 0.0)) {
-    d = (theta * start >= 0.0) ? -theta / start : theta / end;
-  } else {
-    d = end == start ? 1.0 : -1.0 + 2.0 * (theta - start) / (end - start);
-  }
-  return std::clamp(d, -2.0, 2.0);
-}
-
-// d(theta)/d(delta) averaged over the sweep: hip controllers command a share of the sweep per
-// second, so the thigh's velocity stays smooth where the mapping bends at the vertical.
-double sweep_scale(double start, double end) {
-  return 0.5 * (end - start);
-}
 
 // Between `good` (passes `ok`) and `bad` (fails it), the value nearest `bad` that still passes,
 // to 40 halvings.
@@ -167,7 +135,7 @@ Point contact_point(const LegPoints& p, Phase phase) {
 // Two joints of a leg (hip and knee, or ankle and toe) as one lane pair (SSE2 on x86-64): each
 // operation is the same IEEE operation on each joint, so the bits are the scalar code's, in fewer
 // instructions.
-using JointPair = simd::Double2;
+using detail::JointPair;
 struct Joints {
   JointPair hip_knee;
   JointPair ankle_toe;
@@ -177,11 +145,6 @@ Joints joints(const LegAngles& a) {
 }
 void store(LegAngles& a, const Joints& v) {
   a = std::bit_cast<LegAngles>(v);
-}
-// std::clamp joint by joint (a NaN stays NaN).
-JointPair clamp(JointPair v, JointPair low, JointPair high) {
-  const JointPair raised = select(v < low, low, v);
-  return select(high < raised, high, raised);
 }
 
 }  // namespace
@@ -260,9 +223,8 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
   for (const Controller& c : controllers.terrain_controllers)
     workspaces_.push_back(c.make_workspace());
   events_.reserve(kEventCapacity);
-  // Angle between the thigh and the hip-heel line of a straight leg with a neutral ankle.
+  heel_offset_ = detail::heel_offset(segments_);
   const LegPoints straight = rig::forward_kinematics(segments_, {0.0, 0.0}, 0.0, LegAngles{});
-  heel_offset_ = -inclination(straight.hip, straight.heel);
   reach_ = std::hypot(straight.heel.x - straight.hip.x, straight.heel.y - straight.hip.y);
   start(options.start);
 }
@@ -337,8 +299,7 @@ void Walker::record(rig::Side side, Event event, Point where) {
 }
 
 double Walker::stance_target() const {
-  const double reach = segments_.thigh + segments_.shank;
-  return -arcsin(std::clamp(0.5 * step_length_ / reach, 0.0, 0.95));
+  return detail::stance_target(segments_, step_length_);
 }
 
 void Walker::start(const StartPose& start_pose) {
@@ -761,7 +722,6 @@ FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, co
                                                           MetricValues& m) {
   LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
   const double tilt = w.state_.pelvis_tilt;
-  const double thigh = thigh_of(tilt, l.angles);
   double end = l.sweep_end;
   if (l.phase == Phase::Swing) {
     // Arrived when the thigh is where a straight leg's heel would point at the foot target; under
@@ -785,14 +745,9 @@ FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, co
     }
     l.sweep_end = end;
   }
-  l.delta = progress(thigh, l.sweep_start, end);
-  m[static_cast<std::size_t>(Metric::Delta)] = l.delta;
-  m[static_cast<std::size_t>(Metric::Hip)] = rig::degrees(l.angles.hip);
-  m[static_cast<std::size_t>(Metric::Knee)] = rig::degrees(l.angles.knee);
-  m[static_cast<std::size_t>(Metric::Ankle)] = rig::degrees(l.angles.ankle);
-  m[static_cast<std::size_t>(Metric::Toe)] = rig::degrees(l.angles.toe);
-  m[static_cast<std::size_t>(Metric::Sole)] =
-      rig::degrees(foot_of(tilt, l.angles) - w.terrain_->slope(p.ankle.x));
+  detail::leg_metrics(tilt, l.angles.hip, l.angles.knee, l.angles.ankle, l.angles.toe,
+                      l.sweep_start, end, w.terrain_->slope(p.ankle.x), m);
+  l.delta = m[static_cast<std::size_t>(Metric::Delta)];
 }
 
 // All eight controllers before any joint moves: they read only the metrics, and side by side
@@ -977,7 +932,7 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
   // exp() is recomputed only when h changes.
   if (!(h == w.follow_step_)) {
     w.follow_step_ = h;
-    w.follow_ = 1.0 - std::exp(-h / w.controllers_->inertia);
+    w.follow_ = detail::follow_share(h, w.controllers_->inertia);
   }
   const double follow = w.follow_;
   const Joints minimum = joints(w.limits_.minimum);
@@ -991,8 +946,8 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
     // (Only the set's own swing knee controller's share: a terrain word's file says its own
     // velocities.)
     const double reference = w.controllers_->swing_knee_reference_sweep;
-    double knee_scale = l.phase == Phase::Swing && reference > 0.0
-                            ? std::abs(l.sweep_end - l.sweep_start) / reference
+    double knee_scale = l.phase == Phase::Swing
+                            ? detail::swing_knee_scale(l.sweep_start, l.sweep_end, reference)
                             : 1.0;
     if (l.phase == Phase::Swing && w.controllers_->has_terrain_words()) {
       const double own = w.controllers_->own_degree(slot(LegPhase::Swing, Joint::Knee),
@@ -1001,21 +956,14 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
     }
     // The hip's command is a share of the sweep per second, the others degrees per second.
     const Joints target{JointPair{c[0], c[1] * per_degree} *
-                            JointPair{sweep_scale(l.sweep_start, l.sweep_end), knee_scale},
+                            JointPair{detail::sweep_scale(l.sweep_start, l.sweep_end), knee_scale},
                         JointPair{c[2], c[3]} * per_degree};
     Joints velocity = joints(l.velocity);
     Joints angles = joints(l.angles);
-    auto follow_command = [&](JointPair command, JointPair& v, JointPair& angle, JointPair low,
-                              JointPair high) {
-      // x - x is 0 exactly when x is finite: a NaN or infinite command is no command.
-      const JointPair wanted = select((command - command) == 0.0, command, JointPair{});
-      v += (wanted - v) * follow;
-      angle = clamp(angle + v * h, low, high);
-    };
-    follow_command(target.hip_knee, velocity.hip_knee, angles.hip_knee, minimum.hip_knee,
-                   maximum.hip_knee);
-    follow_command(target.ankle_toe, velocity.ankle_toe, angles.ankle_toe, minimum.ankle_toe,
-                   maximum.ankle_toe);
+    detail::follow_command(target.hip_knee, velocity.hip_knee, angles.hip_knee, follow, h,
+                           minimum.hip_knee, maximum.hip_knee);
+    detail::follow_command(target.ankle_toe, velocity.ankle_toe, angles.ankle_toe, follow, h,
+                           minimum.ankle_toe, maximum.ankle_toe);
     store(l.velocity, velocity);
     store(l.angles, angles);
     d.commanded[static_cast<std::size_t>(leg)] = l.angles;
@@ -1218,14 +1166,12 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
     // What a joint remembers as its speed is capped: a jump made in one step (the chain closing
     // onto a foot put down far from the body after an awkward start) must not carry on as a
     // velocity, swinging the leg through a turn in a few steps and the pelvis with it.
-    const Joints fastest = joints(kMaxJointSpeed);
+    const Joints fastest = joints(detail::kMaxJointSpeed);
     const Joints now = joints(l.angles);
     const Joints before = joints(previous[static_cast<std::size_t>(leg)]);
-    auto speed = [h](JointPair to, JointPair from, JointPair most) {
-      return clamp((to - from) / h, -most, most);
-    };
-    store(l.velocity, {speed(now.hip_knee, before.hip_knee, fastest.hip_knee),
-                       speed(now.ankle_toe, before.ankle_toe, fastest.ankle_toe)});
+    store(l.velocity,
+          {detail::remembered_speed(now.hip_knee, before.hip_knee, h, fastest.hip_knee),
+           detail::remembered_speed(now.ankle_toe, before.ankle_toe, h, fastest.ankle_toe)});
   }
   w.end_points_valid_ = true;
   w.state_.time += h;

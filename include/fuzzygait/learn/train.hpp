@@ -1,0 +1,133 @@
+// Training a controller set on motion capture clips, the whole pipeline behind `fuzzygait train`:
+//   1. commands      a per-frame fit of every controller (learn::fit, FitData::Commands);
+//   2. joints        trajectory fits joint by joint, the other joints from the clips;
+//   3. coupled       a trajectory fit of every controller with the legs' joints together;
+//   4. polish        the closed loop: the existing tuner (learn::tune, CMA-ES) walks the set at
+//   each
+//                    clip's legs and step against the clip's mean cycle, stance share, cycle time
+//                    and knee peak (clip_condition()), with the set's words and contacts priced.
+// After each fit, each controller's fitted values are kept only where the closed-loop cost of the
+// walk (walk_cost) improves: the fits see the clips frame by frame, the walk sees landing,
+// hand-over and timing. The result keeps the base set's rules and words, its values rounded for
+// people.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fuzzygait/eval/evaluation.hpp"
+#include "fuzzygait/eval/motion.hpp"
+#include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/learn/fit.hpp"
+#include "fuzzygait/learn/structure.hpp"
+#include "fuzzygait/learn/tune.hpp"
+#include "fuzzygait/terrain/terrain.hpp"
+
+namespace fuzzygait::learn {
+
+// A clip to train on, measured.
+struct TrainClip {
+  std::string name;
+  eval::Motion motion;  // captured
+  terrain::Terrain ground = terrain::Terrain::flat();
+  eval::GaitReport report;  // evaluate() of the motion: its mean cycle, timing, step length
+  // The step the walker takes for this clip (m): the rig's heel-to-heel step in the clip
+  // (report.step_length), at which the rig's legs take the clip's angles.
+  double step_length = 0.0;
+};
+
+// Measures a clip for training. Throws std::invalid_argument (naming `name`) when evaluate()
+// finds no complete cycle in it, or its step is outside the walker's range for its legs.
+TrainClip make_train_clip(std::string name, eval::Motion motion, terrain::Terrain ground);
+
+struct TrainProgress {
+  std::string stage;  // "commands", "joints", "coupled", "polish"
+  int iteration = 0;  // the fit's iteration or the polish's generation
+  double cost = 0.0;  // the stage's own cost (Ceres' or the walk's)
+  // Per clip, when known: the closed-loop RMSE of the best set (thigh, knee, ankle, deg).
+  std::vector<std::array<double, 3>> rmse;
+};
+
+struct TrainOptions {
+  FitOptions fit;  // the fits' weights and iterations (stage, progress, stop are set)
+  // The closed-loop cost and the polish: its conditions (the clips', plus the grid's when
+  // `grid`), recovery seeds and generations. Its rmse bounds are the clips' targets.
+  TuneOptions polish;
+  ClipTolerances tolerances;
+  bool grid = false;        // also price the level contact bounds on the step/stature grid
+  int recovery_starts = 0;  // random starts that must settle into the gait
+  bool fits = true;         // run stages 1-3 (false: the polish alone)
+  // Add the learning structure (learning_structure(): words the base's rules lack) first.
+  bool structure = true;
+  std::function<void(const TrainProgress&)> progress;
+  std::function<bool()> stop;  // true: stop after the current iteration, keeping the best set
+};
+
+// The default options: 800 polish generations of 48 walks, then 100 on the rounded values (3
+// significant digits), two threads, words and knots of angles free, the words' promises kept,
+// curve bounds 3.7 deg, a clip's stance and cycle time held firmly, no random starts.
+TrainOptions default_train_options();
+
+// One clip's closed-loop figures: the set walked at the clip's legs and step against its mean
+// cycle.
+struct ClipScore {
+  bool walked = false;  // false: the walk failed or had too few cycles (the rest is 0)
+  double thigh = 0.0;   // RMSE, deg
+  double knee = 0.0;
+  double ankle = 0.0;
+  double stance = 0.0;   // % of the cycle (the clip's: TrainClip::report.stance_percent)
+  double cadence = 0.0;  // steps/min
+  eval::GaitReport report;
+};
+ClipScore score_clip(const gait::ControllerSet& set, const TrainClip& clip, double duration = 10.0);
+
+// The level-walk contact bounds (eval::missed_contact_bounds) on the acceptance grid: steps 0.50,
+// 0.60, 0.70 and 0.85 m at statures 1.50, 1.75 and 2.00 m, 10 s each.
+struct GridCheck {
+  int walks = 0;
+  int within = 0;                   // walks that meet every contact bound
+  std::vector<std::string> misses;  // "0.85 m at 1.50 m: foot slip ..." for each other walk
+};
+GridCheck check_grid(const gait::ControllerSet& set);
+
+// Random start poses (eval::walk_from_random_start, seeds 1000 on) at this body and step: walks
+// that stay sound, and that also take steps within 5 % of the command from their fourth step.
+struct StartsCheck {
+  int starts = 0;
+  int sound = 0;
+  int settled = 0;
+};
+StartsCheck check_starts(const gait::ControllerSet& set, const rig::Segments& body, double step,
+                         int count);
+
+struct StageRecord {
+  std::string stage;
+  double cost = 0.0;  // the closed-loop cost after the stage
+  // Fits: the controllers (and the inertia, as one more) whose fitted values were kept;
+  // "structure": the words added; the polish: 0.
+  int kept = 0;
+  double seconds = 0.0;
+};
+
+struct TrainResult {
+  gait::ControllerSet set;        // the trained set, rounded
+  std::vector<AddedWord> added;   // the structure added to the base (their peaks as trained)
+  std::vector<ClipScore> before;  // the base set, clip by clip
+  std::vector<ClipScore> after;   // the trained set
+  std::vector<StageRecord> stages;
+  double cost_before = 0.0;
+  double cost_after = 0.0;
+  bool stopped = false;  // stopped early (TrainOptions::stop): `set` is the best so far
+  double seconds = 0.0;
+};
+
+// Trains `base` (every slot a partition controller) on the clips. The set's name, description
+// and manifest are the base's; the caller names it. With options.structure the set has the words
+// of learning_structure() too.
+TrainResult train(const gait::ControllerSet& base, std::span<const TrainClip> clips,
+                  const TrainOptions& options);
+
+}  // namespace fuzzygait::learn
