@@ -190,8 +190,9 @@ void add_train_command(CLI::App& app) {
       ->add_option("--recovery", o->train.recovery_starts,
                    "Random start poses that must settle into the gait while polishing")
       ->check(CLI::Range(0, 10000));
-  train->add_option("--fit-iterations", o->train.fit.max_iterations,
-                    "Levenberg-Marquardt iterations of each fit at most (default 30)")
+  train
+      ->add_option("--fit-iterations", o->train.fit.max_iterations,
+                   "Levenberg-Marquardt iterations of each fit at most (default 30)")
       ->check(CLI::Range(1, 100000));
   train->add_flag("--no-fits", o->no_fits, "Skip the fits: the closed-loop polish alone");
   train->add_flag("--base-structure", o->base_structure,
