@@ -102,10 +102,11 @@ MeanBody mean_body(const std::vector<learn::TrainClip>& clips) {
   return m;
 }
 
-// The grid's contact bounds and the random starts of `set`, as text and into `json`.
+// The grid's contact bounds, stairs and ramps, and the random starts of `set`, as text and into
+// `json`.
 std::string checks(const gait::ControllerSet& set, const MeanBody& body, int starts,
                    nlohmann::ordered_json& json) {
-  const learn::GridCheck grid = learn::check_grid(set);
+  const learn::WalksCheck grid = learn::check_grid(set);
   std::string text =
       "level grid (steps 0.50-0.85 m, statures 1.50-2.00 m): " + std::to_string(grid.within) +
       " of " + std::to_string(grid.walks) + " walks within the contact bounds\n";
@@ -114,6 +115,14 @@ std::string checks(const gait::ControllerSet& set, const MeanBody& body, int sta
   json["grid_walks"] = grid.walks;
   json["grid_within_bounds"] = grid.within;
   json["grid_misses"] = grid.misses;
+  const learn::WalksCheck terrain = learn::check_terrain(set, body.body, body.step);
+  text += "stairs and ramps at the clips' body and step: " + std::to_string(terrain.within) +
+          " of " + std::to_string(terrain.walks) + " walks within the bounds\n";
+  for (const std::string& miss : terrain.misses)
+    text += "  " + miss + "\n";
+  json["terrain_walks"] = terrain.walks;
+  json["terrain_within_bounds"] = terrain.within;
+  json["terrain_misses"] = terrain.misses;
   if (starts > 0) {
     const learn::StartsCheck s = learn::check_starts(set, body.body, body.step, starts);
     text += "random starts at the clips' body and step: " + std::to_string(s.sound) + " of " +

@@ -70,9 +70,13 @@ TEST(TrainCommand, WritesTheSetItsReportAndTheClipsCurves) {
   EXPECT_GT(clip["before"]["knee_rmse_deg"].get<double>(),
             clip["after"]["knee_rmse_deg"].get<double>());
   EXPECT_FALSE(report["stopped"].get<bool>());
+  EXPECT_EQ(report["terrain_walks"].get<int>(), 4);
+  EXPECT_EQ(report["terrain_misses"].size(),
+            4u - report["terrain_within_bounds"].get<std::size_t>());
   const std::string text = text_of(out / "report.txt");
   EXPECT_NE(text.find("before: thigh"), std::string::npos) << text;
   EXPECT_NE(text.find("after:  thigh"), std::string::npos) << text;
+  EXPECT_NE(text.find("stairs and ramps at the clips' body and step"), std::string::npos) << text;
   const std::string svg = text_of(out / "07_01.svg");
   EXPECT_NE(svg.find("before: default"), std::string::npos);
   EXPECT_NE(svg.find("after: mine"), std::string::npos);

@@ -201,6 +201,26 @@ TEST(Training, StopsWhenAskedWithTheBestSetSoFar) {
   EXPECT_EQ(learn::word_penalty(r.set), 0.0);
 }
 
+// The stairs and ramps the terrain tests hold the default to, the default meets; a set whose
+// joints follow their commands ten times as slowly does not.
+TEST(TerrainCheck, PassesTheDefaultAndNamesWhatASluggishSetMisses) {
+  const rig::Segments body = rig::segments_from_stature(1.75);
+  const learn::WalksCheck shipped = learn::check_terrain(test::default_set(), body, 0.70);
+  EXPECT_EQ(shipped.walks, 4);
+  EXPECT_EQ(shipped.within, 4);
+  for (const std::string& miss : shipped.misses)
+    ADD_FAILURE() << miss;
+
+  const learn::SetNetwork network(test::default_set());
+  std::vector<double> w = network.values();
+  w[network.find("inertia")] *= 10.0;
+  const learn::WalksCheck stiff = learn::check_terrain(network.apply(w), body, 0.70);
+  EXPECT_EQ(stiff.walks, 4);
+  EXPECT_LT(stiff.within, 4);
+  ASSERT_FALSE(stiff.misses.empty());
+  EXPECT_EQ(stiff.misses.front().rfind("stairs up 0.17 x 0.28 m: ", 0), 0u) << stiff.misses.front();
+}
+
 TEST(ManifestBody, IsRefusedWithTheLineAndFieldWhenIncomplete) {
   const std::string manifest_start = R"({"name": "x", "controllers": {}, "body": )";
   auto refused = [&](const std::string& body, const std::string& expected) {

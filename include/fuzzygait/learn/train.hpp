@@ -84,14 +84,23 @@ struct ClipScore {
 };
 ClipScore score_clip(const gait::ControllerSet& set, const TrainClip& clip, double duration = 10.0);
 
+// Walks checked against bounds: how many, how many met them all, and a line for each other walk
+// ("0.85 m at 1.50 m: foot slip ...").
+struct WalksCheck {
+  int walks = 0;
+  int within = 0;
+  std::vector<std::string> misses;
+};
+
 // The level-walk contact bounds (eval::missed_contact_bounds) on the acceptance grid: steps 0.50,
 // 0.60, 0.70 and 0.85 m at statures 1.50, 1.75 and 2.00 m, 10 s each.
-struct GridCheck {
-  int walks = 0;
-  int within = 0;                   // walks that meet every contact bound
-  std::vector<std::string> misses;  // "0.85 m at 1.50 m: foot slip ..." for each other walk
-};
-GridCheck check_grid(const gait::ControllerSet& set);
+WalksCheck check_grid(const gait::ControllerSet& set);
+
+// The terrain walks the shipped sets are held to (tests/gait/terrain_walk_test.cpp), at this body
+// and step: eight 0.17 x 0.28 m stairs up and down (24 s, reaching the landing) and 10 deg ramps
+// up and down (16 s, steps on the ramp within 5 % of the command), each with no leg point deeper
+// than 1 mm in the ground (the toe tip 5 mm, against a riser) and no NaN.
+WalksCheck check_terrain(const gait::ControllerSet& set, const rig::Segments& body, double step);
 
 // Random start poses (eval::walk_from_random_start, seeds 1000 on) at this body and step: walks
 // that stay sound, and that also take steps within 5 % of the command from their fourth step.

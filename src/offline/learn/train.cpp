@@ -1,12 +1,14 @@
 #include "fuzzygait/learn/train.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <utility>
 
 #include "fuzzygait/eval/recovery.hpp"
+#include "fuzzygait/eval/terrain_report.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/learn/network.hpp"
 #include "fuzzygait/learn/training.hpp"
@@ -156,14 +158,66 @@ ClipScore score_clip(const gait::ControllerSet& set, const TrainClip& clip, doub
   return score;
 }
 
-GridCheck check_grid(const gait::ControllerSet& set) {
-  GridCheck check;
+namespace {
+
+// Counts a walk in `check`: within its bounds when `missed` is empty, else a line `walk: missed`.
+void count_walk(WalksCheck& check, const std::string& walk,
+                const std::vector<std::string>& missed) {
+  ++check.walks;
+  if (missed.empty()) {
+    ++check.within;
+    return;
+  }
+  std::string line = walk + ": ";
+  for (std::size_t k = 0; k < missed.size(); ++k)
+    line += (k > 0 ? "; " : "") + missed[k];
+  check.misses.push_back(std::move(line));
+}
+
+// What a terrain walk misses of check_terrain's bounds.
+std::vector<std::string> missed_terrain_bounds(const eval::TerrainReport& r, bool stairs,
+                                               double step) {
+  std::vector<std::string> missed;
+  char line[160];
+  if (r.nan_frames > 0) missed.push_back(std::to_string(r.nan_frames) + " frames with NaN");
+  if (stairs && !r.reached_end.value_or(false))
+    missed.push_back("stopped on run " + std::to_string(r.last_run) + " of " +
+                     std::to_string(r.runs - 1));
+  for (std::size_t p = 0; p < r.points.size(); ++p) {
+    const bool tip = std::string(eval::kContactPoints[p]) == "tip";
+    const double bound = tip ? 0.005 : 0.001;
+    if (r.points[p].max_penetration >= bound) {
+      std::snprintf(line, sizeof line, "%s %.1f mm in the ground (bound %.0f mm)",
+                    eval::kContactPoints[p], r.points[p].max_penetration * 1e3, bound * 1e3);
+      missed.emplace_back(line);
+    }
+  }
+  if (!stairs) {
+    bool on_ramp = false;
+    for (const eval::TerrainGroup& g : r.groups) {
+      if (g.footing != eval::Footing::RampUp && g.footing != eval::Footing::RampDown) continue;
+      on_ramp = true;
+      const double error = g.step_length.mean / step - 1.0;
+      if (g.steps < 6 || std::abs(error) >= 0.05) {
+        std::snprintf(line, sizeof line, "%d steps on the ramp, %.1f %% from the command", g.steps,
+                      error * 100.0);
+        missed.emplace_back(line);
+      }
+    }
+    if (!on_ramp) missed.emplace_back("no step on the ramp");
+  }
+  return missed;
+}
+
+}  // namespace
+
+WalksCheck check_grid(const gait::ControllerSet& set) {
+  WalksCheck check;
   const terrain::Terrain flat = terrain::Terrain::flat();
   for (const double step : {0.50, 0.60, 0.70, 0.85}) {
     for (const double stature : {1.50, 1.75, 2.00}) {
-      ++check.walks;
       char walk[64];
-      std::snprintf(walk, sizeof walk, "%.2f m at %.2f m: ", step, stature);
+      std::snprintf(walk, sizeof walk, "%.2f m at %.2f m", step, stature);
       std::vector<std::string> missed;
       try {
         gait::WalkerOptions wo;
@@ -175,15 +229,38 @@ GridCheck check_grid(const gait::ControllerSet& set) {
       } catch (const std::exception& e) {
         missed = {e.what()};
       }
-      if (missed.empty()) {
-        ++check.within;
-        continue;
-      }
-      std::string line = walk;
-      for (std::size_t k = 0; k < missed.size(); ++k)
-        line += (k > 0 ? "; " : "") + missed[k];
-      check.misses.push_back(line);
+      count_walk(check, walk, missed);
     }
+  }
+  return check;
+}
+
+WalksCheck check_terrain(const gait::ControllerSet& set, const rig::Segments& body, double step) {
+  struct Ground {
+    const char* name;
+    terrain::Terrain terrain;
+    bool stairs;
+  };
+  const Ground grounds[] = {
+      {"stairs up 0.17 x 0.28 m", terrain::Terrain::stairs(0.17, 0.28, 8), true},
+      {"stairs down 0.17 x 0.28 m", terrain::Terrain::stairs(-0.17, 0.28, 8), true},
+      {"ramp up 10 deg", terrain::Terrain::ramp(10.0), false},
+      {"ramp down 10 deg", terrain::Terrain::ramp(-10.0), false},
+  };
+  WalksCheck check;
+  for (const Ground& g : grounds) {
+    std::vector<std::string> missed;
+    try {
+      gait::WalkerOptions wo;
+      wo.segments = body;
+      wo.step_length = step;
+      gait::Walker walker(set, wo, g.terrain);
+      const eval::Motion motion = eval::record(walker, g.stairs ? 24.0 : 16.0, 120.0);
+      missed = missed_terrain_bounds(eval::evaluate_terrain(motion, g.terrain), g.stairs, step);
+    } catch (const std::exception& e) {
+      missed = {e.what()};
+    }
+    count_walk(check, g.name, missed);
   }
   return check;
 }
