@@ -8,7 +8,10 @@
 #   leave one out: the set trained on eight clips walked against the ninth.
 # Usage: scripts/train-clips.sh [BUILD_DIR] [OUT_DIR] [-- extra fuzzygait train options]
 # (defaults build and out/train-clips). Figures over a bound (4 deg, 3 points of stance, 5 % of
-# cadence; 6 deg left out) are starred.
+# cadence; 6 deg left out) are starred. Environment: TRAIN_CLIPS_STARTS (random starts checked,
+# default 500), TRAIN_CLIPS_LOO_OPTIONS (options of the eight-clip trainings only, such as a
+# smaller budget: each walks eight clips a generation), TRAIN_CLIPS_REUSE=1 (keep a training
+# whose report.json exists).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
@@ -19,9 +22,13 @@ extra=("$@")
 program=$build/fuzzygait
 clips=(05_01 07_01 07_02 07_03 07_06 08_01 08_02 08_03 08_06)
 starts=${TRAIN_CLIPS_STARTS:-500}
+read -r -a loo_options <<< "${TRAIN_CLIPS_LOO_OPTIONS:-}"
 mkdir -p "$out"
 
+done_already() { [[ ${TRAIN_CLIPS_REUSE:-0} == 1 && -f $1/report.json ]]; }
+
 for clip in "${clips[@]}"; do
+  done_already "$out/$clip" && continue
   "$program" train "$root/data/mocap/cmu/$clip.bvh" -o "$out/$clip" --check-starts "$starts" \
     "${extra[@]}" > "$out/$clip.log" 2>&1
 done
@@ -30,8 +37,9 @@ for clip in "${clips[@]}"; do
   for other in "${clips[@]}"; do
     [[ $other == "$clip" ]] || others+=("$root/data/mocap/cmu/$other.bvh")
   done
-  "$program" train "${others[@]}" -o "$out/without_$clip" --check-starts 0 "${extra[@]}" \
-    > "$out/without_$clip.log" 2>&1
+  done_already "$out/without_$clip" ||
+    "$program" train "${others[@]}" -o "$out/without_$clip" --check-starts 0 "${extra[@]}" \
+      "${loo_options[@]}" > "$out/without_$clip.log" 2>&1
   "$program" train "$root/data/mocap/cmu/$clip.bvh" --controllers "$out/without_$clip" \
     --evaluate "$out/without_$clip/held_out.json" --check-starts 0 > /dev/null 2>&1
 done
