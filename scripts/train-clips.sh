@@ -66,8 +66,8 @@ def timing(s, clip):
             f"({clip['clip_cadence_steps_per_min']:.1f})"]
 
 print("| clip | thigh | knee | ankle | stance (clip) | cadence (clip) | before: thigh / knee / ankle "
-      "| grid walks in bounds | random starts settled | s |")
-print("|---|---|---|---|---|---|---|---|---|---|")
+      "| grid | terrain | starts | s |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
 for clip in clips:
     r = json.load(open(f"{out}/{clip}/report.json"))
     c = r["clips"][0]
@@ -76,6 +76,7 @@ for clip in clips:
         if before["walked"] else "does not walk"
     print(f"| {clip} | " + " | ".join(curves(c["after"], 4.0) + timing(c["after"], c)) +
           f" | {b} | {r['grid_within_bounds']} of {r['grid_walks']} | "
+          f"{r['terrain_within_bounds']} of {r['terrain_walks']} | "
           f"{r['random_starts_settled']} of {r['random_starts']} | {r['seconds']:.0f} |")
 print()
 print("Leave one out (trained on the other eight, walked against this one):")
