@@ -192,6 +192,11 @@ void add_train_command(CLI::App& app) {
   train->add_option("--threads", polish.threads, "Walks evaluated in parallel (default 2)")
       ->check(CLI::Range(1, 1024));
   train->add_option("--seed", polish.seed, "Random seed (the result is deterministic for a seed)");
+  train
+      ->add_option("--steps-around", o->train.steps_around,
+                   "Also keep the contact bounds at each clip's body walking these multiples of "
+                   "its step (for example 0.7 1.2)")
+      ->check(CLI::Range(0.3, 2.0));
   train->add_flag("--grid", o->train.grid,
                   "Also keep the level contact bounds on the step/stature grid (steps 0.50-0.85 m, "
                   "statures 1.50-2.00 m) while polishing: slower");

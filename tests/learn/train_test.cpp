@@ -163,6 +163,22 @@ TEST(Training, TrainsTheSameSetAgain) {
   EXPECT_NE(learn::SetNetwork(first.set).values(), learn::SetNetwork(test::default_set()).values());
 }
 
+// Steps around the clip's are walked and priced in the closed loop: the base's cost grows by
+// what it misses there, and the training still ends on a set.
+TEST(Training, PricesTheStepsAroundTheClipsStep) {
+  const std::vector<learn::TrainClip> clips = {clip("07_01")};
+  learn::TrainOptions o = learn::default_train_options();
+  o.fits = false;
+  o.polish.generations = 2;
+  o.polish.polish_generations = 1;
+  o.polish.population = 8;
+  const learn::TrainResult alone = learn::train(test::default_set(), clips, o);
+  o.steps_around = {0.7, 1.2};
+  const learn::TrainResult around = learn::train(test::default_set(), clips, o);
+  EXPECT_GT(around.cost_before, alone.cost_before);
+  EXPECT_TRUE(around.after.at(0).walked);
+}
+
 TEST(TrainedSet, ItsManifestCarriesTheClipsBodyAndStep) {
   gait::ControllerSet trained = test::default_set();
   const learn::TrainClip c = clip("07_01");

@@ -57,7 +57,10 @@ struct TrainOptions {
   // `grid`), recovery seeds and generations. Its rmse bounds are the clips' targets.
   TuneOptions polish;
   ClipTolerances tolerances;
-  bool grid = false;        // also price the level contact bounds on the step/stature grid
+  bool grid = false;  // also price the level contact bounds on the step/stature grid
+  // Also price the contact bounds and step error at each clip's body walking these multiples of
+  // its step length (a clip shows one step; these keep the set walking others).
+  std::vector<double> steps_around;
   int recovery_starts = 0;  // random starts that must settle into the gait
   bool fits = true;         // run stages 1-3 (false: the polish alone)
   // Add the learning structure (learning_structure(): words the base's rules lack) first.

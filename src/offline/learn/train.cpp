@@ -324,6 +324,15 @@ TrainResult train(const gait::ControllerSet& base, std::span<const TrainClip> cl
                                                clips[k].motion.segments, clips[k].step_length,
                                                options.tolerances));
   }
+  for (const TrainClip& clip : clips) {
+    for (const double factor : options.steps_around) {
+      // Contact bounds only: timing at another step is not the clip's.
+      polish.conditions.push_back({.segments = clip.motion.segments,
+                                   .step_length = factor * clip.step_length,
+                                   .stance = Range{0.0, 100.0},
+                                   .cycle_time = Range{0.1, 10.0}});
+    }
+  }
   if (options.grid) {
     for (const double step : {0.50, 0.60, 0.70, 0.85}) {
       for (const double stature : {1.50, 1.75, 2.00})
