@@ -49,7 +49,7 @@ case "$mode" in
     for test in "${clang_tests[@]}"; do
       "$root/build-clang/tests/$test" --gtest_brief=1
     done
-    echo "== libFuzzer runs of the FLL reader, the FLD reader and the formula compiler (clang)"
+    echo "== libFuzzer runs of the FLL, FLD and BVH readers and the formula compiler (clang)"
     configure_and_build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
       -DFUZZYGAIT_FUZZ=ON
     (cd "$root/build-fuzz" && ctest --output-on-failure -L fuzz)
