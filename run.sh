@@ -3,8 +3,8 @@
 #   ./run.sh          installs what is missing, builds, and walks the default character (out/)
 #   ./run.sh test     installs what is missing, builds, and runs every test
 #                     (Release build, ASan+UBSan build with the scalar lanes, a Clang build's
-#                     walker, crowd, controller and lane tests, libFuzzer runs of the FLL
-#                     reader, the FLD reader and the formula compiler)
+#                     walker, crowd, controller and lane tests, libFuzzer runs of the FLL,
+#                     FLD and BVH readers and the formula compiler)
 set -euo pipefail
 cd "$(dirname "$0")"
 root=$(pwd)
