@@ -102,27 +102,31 @@ MeanBody mean_body(const std::vector<learn::TrainClip>& clips) {
   return m;
 }
 
+// One WalksCheck as a heading ("WHAT: N of M walks within BOUNDS"), a line per miss, and as
+// `json`'s KEY_walks, KEY_within_bounds and KEY_misses.
+std::string walks_check_text(const learn::WalksCheck& check, const std::string& what,
+                             const std::string& bounds, const std::string& key,
+                             nlohmann::ordered_json& json) {
+  std::string text = what + ": " + std::to_string(check.within) + " of " +
+                     std::to_string(check.walks) + " walks within " + bounds + "\n";
+  for (const std::string& miss : check.misses)
+    text += "  " + miss + "\n";
+  json[key + "_walks"] = check.walks;
+  json[key + "_within_bounds"] = check.within;
+  json[key + "_misses"] = check.misses;
+  return text;
+}
+
 // The grid's contact bounds, stairs and ramps, and the random starts of `set`, as text and into
 // `json`.
 std::string checks(const gait::ControllerSet& set, const MeanBody& body, int starts,
                    nlohmann::ordered_json& json) {
-  const learn::WalksCheck grid = learn::check_grid(set);
-  std::string text =
-      "level grid (steps 0.50-0.85 m, statures 1.50-2.00 m): " + std::to_string(grid.within) +
-      " of " + std::to_string(grid.walks) + " walks within the contact bounds\n";
-  for (const std::string& miss : grid.misses)
-    text += "  " + miss + "\n";
-  json["grid_walks"] = grid.walks;
-  json["grid_within_bounds"] = grid.within;
-  json["grid_misses"] = grid.misses;
-  const learn::WalksCheck terrain = learn::check_terrain(set, body.body, body.step);
-  text += "stairs and ramps at the clips' body and step: " + std::to_string(terrain.within) +
-          " of " + std::to_string(terrain.walks) + " walks within the bounds\n";
-  for (const std::string& miss : terrain.misses)
-    text += "  " + miss + "\n";
-  json["terrain_walks"] = terrain.walks;
-  json["terrain_within_bounds"] = terrain.within;
-  json["terrain_misses"] = terrain.misses;
+  std::string text = walks_check_text(learn::check_grid(set),
+                                      "level grid (steps 0.50-0.85 m, statures 1.50-2.00 m)",
+                                      "the contact bounds", "grid", json);
+  text += walks_check_text(learn::check_terrain(set, body.body, body.step),
+                           "stairs and ramps at the clips' body and step", "the bounds", "terrain",
+                           json);
   if (starts > 0) {
     const learn::StartsCheck s = learn::check_starts(set, body.body, body.step, starts);
     text += "random starts at the clips' body and step: " + std::to_string(s.sound) + " of " +
