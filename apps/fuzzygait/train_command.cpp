@@ -1,6 +1,7 @@
 // `fuzzygait train`: learns a controller set from motion capture clips (learn::train) and writes
 // it with a report: the error per joint before and after, and each clip's curves before and after
 // against the clip. Ctrl-C stops the training and writes the best set found so far.
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -80,6 +81,7 @@ nlohmann::ordered_json score_json(const learn::ClipScore& s) {
 struct MeanBody {
   rig::Segments body{};
   double step = 0.0;
+  double speed = 0.0;
   std::string names;  // "07_01, 07_02"
 };
 MeanBody mean_body(const std::vector<learn::TrainClip>& clips) {
@@ -94,10 +96,11 @@ MeanBody mean_body(const std::vector<learn::TrainClip>& clips) {
     m.body.ball += s.ball;
     m.body.toe += s.toe;
     m.step += c.step_length;
+    m.speed += c.report.speed;
   }
   const auto n = static_cast<double>(clips.size());
   for (double* v : {&m.body.thigh, &m.body.shank, &m.body.ankle_height, &m.body.heel, &m.body.ball,
-                    &m.body.toe, &m.step})
+                    &m.body.toe, &m.step, &m.speed})
     *v /= n;
   return m;
 }
@@ -306,6 +309,7 @@ void add_train_command(CLI::App& app) {
     if (trained.name.empty()) trained.name = "trained";
     trained.body = clips_body.body;
     trained.body_step_length = clips_body.step;
+    trained.body_speed = clips_body.speed;
     trained.description = o->description.empty()
                               ? "Trained on " + clips_body.names + " from '" + base.name + "'."
                               : o->description;
@@ -397,6 +401,16 @@ void add_train_command(CLI::App& app) {
     io::write_file(folder / "report.txt", text);
     io::write_file(folder / "report.json", json.dump(2) + "\n");
     std::cout << text;
+    // A training that made the set worse, or whose walks fail, is no result: the files stay for
+    // a look, the exit status says so.
+    if (!std::isfinite(result.cost_after) ||
+        (!result.stopped && !(result.cost_after < result.cost_before))) {
+      throw std::runtime_error("the trained set walks no better than '" + base.name +
+                               "' (closed-loop cost " + fixed(result.cost_before, 2) + " -> " +
+                               fixed(result.cost_after, 2) +
+                               "): the clips may not be walks this set can learn; see " +
+                               (folder / "report.txt").string());
+    }
     std::cout << "wrote the set '" << trained.name << "' to " << o->output << ", "
               << (folder / "report.txt").string() << ", " << (folder / "report.json").string();
     for (const std::string& f : written)

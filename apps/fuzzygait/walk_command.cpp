@@ -29,6 +29,7 @@ namespace svg = plot::svg;
 
 struct WalkOptions {
   double step = 0.70;
+  double speed = 0.0;
   double stature = 1.75;
   // Lengths given one by one replace the stature's; the rig checks each (zero and negative too).
   std::optional<double> thigh, shank, ankle_height, heel, ball, toe;
@@ -130,6 +131,9 @@ void add_walk_command(CLI::App& app) {
       "walk", "Walk a character with fuzzy controllers and write its files and plots");
   walk->add_option("--step", o->step,
                    "Step length, metres heel to heel (default 0.70, or a trained set's own)");
+  walk->add_option("--speed", o->speed,
+                   "Walking speed, m/s (instead of --step): the step follows the set's stride "
+                   "relation, the cadence both");
   walk->add_option("--stature", o->stature,
                    "Body height, metres: segment lengths from anthropometric proportions "
                    "(default 1.75, or a trained set's own body)");
@@ -197,11 +201,24 @@ void add_walk_command(CLI::App& app) {
     options.segments.heel = o->heel.value_or(options.segments.heel);
     options.segments.ball = o->ball.value_or(options.segments.ball);
     options.segments.toe = o->toe.value_or(options.segments.toe);
-    const double step =
-        set.body_step_length && walk->count("--step") == 0 ? *set.body_step_length : o->step;
-    options.step_length = step;
+    const bool speed_given = walk->count("--speed") > 0;
+    if (speed_given && !(o->speed > 0.0)) {
+      throw std::invalid_argument("--speed must be a speed above 0 m/s, got " +
+                                  common::number_text(o->speed));
+    }
+    const bool step_given = walk->count("--step") > 0;
+    if (speed_given && step_given) {
+      throw std::invalid_argument(
+          "give --speed or --step, not both: a walk by speed takes the "
+          "step its set's stride relation gives");
+    }
+    // A trained set's body walks its own step unless a step or a speed is given.
+    const bool own_pace = !speed_given && !step_given && set.body_step_length.has_value();
+    options.speed = speed_given ? o->speed : 0.0;
+    options.step_length = own_pace ? *set.body_step_length : o->step;
     options.start = parse_start(o->start_pose);
     gait::Walker walker(set, options, ground);
+    const double step = walker.step_length();
     const eval::Motion motion = o->duration > 0.0 ? eval::record(walker, o->duration, o->fps)
                                                   : eval::record_cycles(walker, o->cycles, o->fps);
     const std::filesystem::path prefix(o->prefix);

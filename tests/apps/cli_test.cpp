@@ -96,6 +96,22 @@ TEST(WalkCommand, BadOptionsAreRefusedWithTheReason) {
   refused("--fps nan", "--fps must be between 10 and 2000, got nan");
   // One frame a second cannot see the feet strike (a cycle takes about one second).
   refused("--fps 1", "--fps must be between 10 and 2000, got 1");
+  refused("--speed 0", "--speed must be a speed above 0 m/s, got 0");
+  refused("--speed nan", "--speed must be a speed above 0 m/s, got nan");
+  refused("--speed 9", "speed must be between");
+  refused("--speed 1.2 --step 0.7", "give --speed or --step, not both");
+}
+
+// Asked for a speed, the walk takes it, with the step and cadence of the set's stride relation.
+TEST(WalkCommand, WalksAtTheSpeedAsked) {
+  const std::filesystem::path prefix = scratch("speed");
+  const auto run = run_program("walk --cycles 6 --speed 1.5 -o " + shell_quoted(prefix));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::size_t at = run.output.find("\nspeed ");
+  ASSERT_NE(at, std::string::npos) << run.output;
+  const double speed = std::stod(run.output.substr(run.output.find_first_of("0123456789", at)));
+  EXPECT_NEAR(speed, 1.5, 0.03 * 1.5) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("pelvis speed, lowest"));
 }
 
 TEST(WalkCommand, RefusesBeforeWritingAnything) {

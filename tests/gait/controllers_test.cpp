@@ -107,7 +107,7 @@ TEST(ControllerSet, ErrorsNameTheFileAndTheProblem) {
   const std::size_t hip = slot.find("\"swing_hip\"");
   slot.replace(hip, slot.find(',', hip) - hip, "\"swing_hip\": 5");
   EXPECT_THAT(error_of(slot, files),
-              HasSubstr("set/manifest.json:9: controller 'swing_hip' must name an FLL file"));
+              HasSubstr("set/manifest.json:11: controller 'swing_hip' must name an FLL file"));
   std::string shortest = manifest;
   const std::size_t at = shortest.find("\"shortest_step_leg_lengths\"");
   shortest.replace(at, shortest.find(',', at) - at, "\"shortest_step_leg_lengths\": 0");
@@ -128,6 +128,49 @@ TEST(ControllerSet, ErrorsNameTheFileAndTheProblem) {
   huge.replace(huge.find("\"inertia_s\""), 11, "\"inertia_s\": 1e400, \"x\"");
   EXPECT_THAT(error_of(huge, files),
               HasSubstr("set/manifest.json:4:16: the number 1e400 is beyond what a double holds"));
+}
+
+// The stride relation: a readable FLL file from pace to step that must rise, so that a speed
+// asks for one step; the cadence and acceleration are the manifest's numbers.
+TEST(ControllerSet, TheStrideRelationRisesAndInverts) {
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  ASSERT_TRUE(set.stride.has_value());
+  EXPECT_EQ(set.cadence, 110.0);
+  EXPECT_EQ(set.acceleration, 0.6);
+  double before = 0.0;
+  for (double pace = set.slowest_pace(); pace <= set.fastest_pace(); pace += 0.01) {
+    const double step = set.step_at_pace(pace);
+    EXPECT_GT(step, before) << pace;
+    EXPECT_NEAR(set.pace_at_step(step), pace, 1e-9) << pace;
+    before = step;
+  }
+  // Outside the steps it gives, the pace clamps to the stride's range.
+  EXPECT_EQ(set.pace_at_step(0.01), set.slowest_pace());
+  EXPECT_EQ(set.pace_at_step(5.0), set.fastest_pace());
+
+  std::map<std::string, std::string> files = default_files();
+  const std::string manifest = files.at("manifest.json");
+  files.erase("manifest.json");
+  std::map<std::string, std::string> falling = files;
+  std::string& stride = falling.at("stride.fll");
+  stride.replace(stride.find("term: longest Constant 1.02"), 27, "term: longest Constant 0.50");
+  EXPECT_THAT(error_of(manifest, falling),
+              HasSubstr("set/stride.fll: the step must rise with the pace"));
+  std::map<std::string, std::string> other = files;
+  std::string& input = other.at("stride.fll");
+  input.replace(input.find("InputVariable: pace"), 19, "InputVariable: knee");
+  for (std::size_t at = input.find("if pace"); at != std::string::npos; at = input.find("if pace"))
+    input.replace(at, 7, "if knee");
+  EXPECT_THAT(error_of(manifest, other), HasSubstr("set/stride.fll: the stride reads one input"));
+  std::string missing = manifest;
+  missing.replace(missing.find("\"stride.fll\""), 12, "\"strides.fll\"");
+  EXPECT_THAT(error_of(missing, files),
+              HasSubstr("'stride' names 'strides.fll', which is not in the set"));
+  std::string cadence = manifest;
+  cadence.replace(cadence.find("\"cadence_steps_per_min\": 110"), 28,
+                  "\"cadence_steps_per_min\": 900");
+  EXPECT_THAT(error_of(cadence, files),
+              HasSubstr("'cadence_steps_per_min' must be a number between"));
 }
 
 TEST(ControllerSet, MetricInputsAreCheckedByName) {

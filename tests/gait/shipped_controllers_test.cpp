@@ -88,7 +88,8 @@ TEST(ShippedControllers, FuzzyliteReadsEveryFileAndGivesFuzzygaitsOutputs) {
       name(c);
     for (const gait::Controller& c : set.terrain_controllers)
       name(c);
-    in_sets += set.controller_count();
+    if (set.stride) name(*set.stride);
+    in_sets += set.controller_count() + (set.stride ? 1 : 0);
   }
   const auto others =
       static_cast<std::size_t>(std::count_if(files.begin(), files.end(), [](const fs::path& f) {

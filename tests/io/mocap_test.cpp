@@ -900,6 +900,34 @@ TEST(MocapCmuClips, EveryClipReadsWithoutPython) {
   }
 }
 
+// The body's travel and the curve features `fuzzygait eval` reports, measured on people: each
+// clip's pelvis keeps its forward speed within 0.6-1.45 of its stride's mean and rises no faster
+// than 0.5 m/s, its ankle pushes off (plantarflexed 5 deg or more; 05_01, a dancer's walk, keeps
+// its ankle at +5) and its thigh lands without
+// swinging more than 5 deg past its contact angle. (The walker's default surges to 2.2-2.7 times
+// its mean: docs/walk.md, "Speed".)
+TEST(MocapCmuClips, BodyTravelAndCurveFeaturesArePeoples) {
+  for (const std::string& name : kClipNames) {
+    const io::CapturedClip clip = io::read_clip(kClips / (name + ".bvh"));
+    const eval::GaitReport r = eval::evaluate(clip.motion, clip.ground);
+    EXPECT_GE(r.pelvis_speed_ratio_min, 0.6) << name;
+    EXPECT_LT(r.pelvis_speed_ratio_min, 1.0) << name;
+    EXPECT_GT(r.pelvis_speed_ratio_max, 1.0) << name;
+    EXPECT_LE(r.pelvis_speed_ratio_max, 1.45) << name;
+    EXPECT_GT(r.pelvis_rise_speed, 0.05) << name;
+    EXPECT_LE(r.pelvis_rise_speed, 0.5) << name;
+    if (name != "05_01") {
+      EXPECT_LE(r.ankle_push_off, -5.0) << name;
+    }
+    EXPECT_LE(r.thigh_overshoot, 5.0) << name;
+    std::printf(
+        "%s: pelvis speed %.2f-%.2f of its mean, rising at most %.2f m/s; thigh overshoot "
+        "%.1f, knee in loading %.1f, push off %.1f deg\n",
+        name.c_str(), r.pelvis_speed_ratio_min, r.pelvis_speed_ratio_max, r.pelvis_rise_speed,
+        r.thigh_overshoot, r.knee_loading_peak, r.ankle_push_off);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // `fuzzygait mocap` as a user runs it.
 

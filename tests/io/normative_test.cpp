@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
 #include <string>
 
@@ -66,11 +67,17 @@ TEST(NormativeCsv, BadFilesNameTheLineAndTheColumn) {
 }
 
 TEST(NormativeCsv, EveryBuiltInReferenceLoads) {
-  ASSERT_EQ(io::builtin_normative_names().size(), 5u);
+  // Schwartz et al. 2008 at five speeds, Bovi et al. 2011 at five and on stairs up and down.
+  ASSERT_EQ(io::builtin_normative_names().size(), 12u);
   for (const std::string& name : io::builtin_normative_names()) {
     const eval::Normative n = io::load_normative(name);
     EXPECT_EQ(n.name, name);
-    EXPECT_GT(n.knee.mean[36], 40.0) << name << ": swing knee flexion at 72 %";
+    // Level walks flex the swing knee at 72 %; Bovi's step ascent is a transitional stride whose
+    // knee peaks earlier (see data/SOURCES.md).
+    if (name.find("ascending") == std::string::npos) {
+      EXPECT_GT(n.knee.mean[36], 40.0) << name << ": swing knee flexion at 72 %";
+    }
+    EXPECT_GT(*std::max_element(n.knee.mean.begin(), n.knee.mean.end()), 40.0) << name;
   }
 }
 

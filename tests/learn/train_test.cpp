@@ -66,6 +66,58 @@ TEST(TrainClip, RefusesAClipWithoutACycle) {
   }
 }
 
+// What a training cannot learn from is refused, naming the clip and why: feet off the floor the
+// clip's own frames fit (uneven ground, or a skeleton whose feet are not where they seem), a
+// backward walk, a slowed-down clip.
+std::string refusal(const std::string& name, io::CapturedClip c) {
+  try {
+    learn::make_train_clip(name, std::move(c.motion), std::move(c.ground));
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TrainClip, RefusesWhatIsNoLevelForwardWalk) {
+  {
+    io::CapturedClip c = io::read_clip(kClips / "07_01.bvh");
+    c.ground = terrain::Terrain::polyline({{-100.0, 0.10}, {100.0, 0.10}});
+    const std::string why = refusal("raised", std::move(c));
+    EXPECT_NE(why.find("raised: not a level forward walk"), std::string::npos) << why;
+    EXPECT_NE(why.find("cm below the floor"), std::string::npos) << why;
+  }
+  {
+    io::CapturedClip c = io::read_clip(kClips / "07_01.bvh");
+    // The clip walked the other way along the x axis, on its floor's level.
+    const double floor = c.ground.height(c.motion.frames.front().pose.pelvis.x);
+    c.ground = terrain::Terrain::polyline({{-100.0, floor}, {100.0, floor}});
+    for (eval::Frame& f : c.motion.frames) {
+      f.pose.pelvis.x = -f.pose.pelvis.x;
+      for (rig::LegPoints& leg : f.points) {
+        for (rig::Point* q : {&leg.hip, &leg.knee, &leg.ankle, &leg.heel, &leg.ball, &leg.tip})
+          q->x = -q->x;
+      }
+    }
+    const std::string why = refusal("backward", std::move(c));
+    EXPECT_NE(why.find("backward: not a level forward walk"), std::string::npos) << why;
+    EXPECT_NE(why.find("a backward walk"), std::string::npos) << why;
+  }
+  {
+    io::CapturedClip c = io::read_clip(kClips / "07_01.bvh");
+    c.motion.fps /= 4.0;
+    for (eval::Frame& f : c.motion.frames)
+      f.time *= 4.0;
+    const std::string why = refusal("slowed", std::move(c));
+    EXPECT_NE(why.find("slowed: not a level forward walk"), std::string::npos) << why;
+    EXPECT_NE(why.find("slowed or sped-up"), std::string::npos) << why;
+  }
+  // Every shared clip is one (the check's tolerances are not tighter than real capture).
+  for (const char* name :
+       {"07_01", "07_02", "07_03", "07_06", "08_01", "08_02", "08_03", "08_06", "05_01"}) {
+    EXPECT_EQ(refusal(name, io::read_clip(kClips / (std::string(name) + ".bvh"))), "") << name;
+  }
+}
+
 // One short training on 07_01, checked for what it promises (one test: each test runs in a
 // process of its own, and a training is the test's cost).
 class TrainedOn0701 : public ::testing::Test {

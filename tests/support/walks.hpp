@@ -35,6 +35,7 @@ inline std::string state_difference(const gait::WalkerState& a, const gait::Walk
     return std::bit_cast<std::uint64_t>(x) != std::bit_cast<std::uint64_t>(y);
   };
   if (differ(a.time, b.time)) return "time";
+  if (differ(a.speed, b.speed)) return "speed";
   if (differ(a.pelvis.x, b.pelvis.x) || differ(a.pelvis.y, b.pelvis.y)) return "pelvis";
   if (differ(a.pelvis_tilt, b.pelvis_tilt)) return "pelvis tilt";
   if (a.lead != b.lead) return "lead";

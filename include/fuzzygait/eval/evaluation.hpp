@@ -16,7 +16,8 @@
 
 namespace fuzzygait::eval {
 
-inline constexpr int kCycleSamples = 51;  // 0..100 % of the gait cycle in 2 % steps
+inline constexpr int kCycleSamples = 51;       // 0..100 % of the gait cycle in 2 % steps
+inline constexpr double kTravelWindow = 0.05;  // s: the span the body's travel is measured over
 
 // Mean and one standard deviation over the gait cycle, degrees, sampled at kCycleSamples.
 struct Curve {
@@ -33,6 +34,10 @@ struct Normative {
   Curve ankle;
   Curve pelvis_tilt;
   Curve thigh;
+  // The ankle's zero is the source's own, a constant away from the clinical one (Bovi et al.
+  // 2011): its curve is compared in shape, the RMSE and the 2 SD band after removing the
+  // difference of the means.
+  bool ankle_offset_unknown = false;
 };
 
 struct JointScore {
@@ -79,9 +84,22 @@ struct GaitReport {
   double knee_peak_percent = 0.0;            // where in the cycle
   double thigh_range = 0.0;                  // degrees, max - min of the mean curve
   double pelvis_vertical_range = 0.0;        // m, mean cycle
-  double max_slip = 0.0;                     // m per frame, foot points in contact
-  double max_penetration = 0.0;              // m below the ground, any foot point
-  double min_toe_clearance = 0.0;            // m, mid-swing (middle 60 % of swing)
+  // Body travel over the measured cycles, from the pelvis's motion over 50 ms (a central
+  // difference over kTravelWindow): its forward speed against its cycle's mean speed, lowest and
+  // highest, and the fastest it rises (m/s).
+  double pelvis_speed_ratio_min = 0.0;
+  double pelvis_speed_ratio_max = 0.0;
+  double pelvis_rise_speed = 0.0;
+  // Features of the mean cycle (degrees): how far the thigh swings past where it lands (its
+  // largest inclination in the second half of the cycle over its inclination at contact), the
+  // knee's flexion in loading response (largest in the first 30 %) and the ankle's push off
+  // (its lowest from 40 to 80 %).
+  double thigh_overshoot = 0.0;
+  double knee_loading_peak = 0.0;
+  double ankle_push_off = 0.0;
+  double max_slip = 0.0;           // m per frame, foot points in contact
+  double max_penetration = 0.0;    // m below the ground, any foot point
+  double min_toe_clearance = 0.0;  // m, mid-swing (middle 60 % of swing)
   // m: the highest a heel rose and came down again within one contact (a heel that lifts after
   // foot flat and drops back before its real heel-off, a flutter people do not show); 0 if none.
   double max_heel_bounce = 0.0;

@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -45,8 +46,11 @@ enum class Metric : std::uint8_t {
   Incline,
   // "stairs": 1 where that pitch is a stair's (a foothold on a tread), 0 on level ground and ramps.
   Stairs,
+  // "pace": the walk's speed as a Froude-like number, v / sqrt(g * leg length) (people walk at
+  // about 0.25-0.7; 0.4 is an adult's natural walk).
+  Pace,
 };
-inline constexpr int kMetricCount = 9;
+inline constexpr int kMetricCount = 10;
 
 // The kinds of ground a controller set may have words for (the manifest's "terrain").
 enum class Ground : std::uint8_t { Slopes, Stairs };
@@ -109,12 +113,29 @@ struct ControllerSet {
   // Shortest step, in leg lengths, that this set walks without losing its rhythm (measured over
   // statures 1.50-2.00 m; docs/walk.md, "Step lengths"). The walker refuses shorter steps.
   double shortest_step = 0.46;
-  // The body and step a trained set learnt its walk at (the manifest's "body": a motion capture
-  // clip's segment lengths and step, heel to heel); walkers built with this set's tools use them
-  // unless told otherwise. None for sets not trained on a body.
+  // The body, step and speed a trained set learnt its walk at (the manifest's "body": a motion
+  // capture clip's segment lengths, step, heel to heel, and speed); walkers built with this set's
+  // tools use them unless told otherwise. None for sets not trained on a body.
   std::optional<rig::Segments> body;
   std::optional<double> body_step_length;  // m
-  std::vector<Controller> controllers;     // indexed by slot()
+  std::optional<double> body_speed;        // m/s
+  // The cadence (steps a minute) the controllers' velocities are written for: a walk of another
+  // cadence plays them faster or slower (Walker: cadence = speed / step length).
+  double cadence = 110.0;
+  // How briskly the walk changes its speed, m/s^2 (people: about 0.5-1).
+  double acceleration = 0.6;
+  std::vector<Controller> controllers;  // indexed by slot()
+  // How long a step people take at each pace (the manifest's "stride": an FLL file reading
+  // "pace" and answering "step" in leg lengths, rising with the pace). What the walker makes of a
+  // speed it is asked for, and the other way round.
+  std::optional<Controller> stride;
+  // The stride's step (leg lengths) at this pace, and the pace of this step (its inverse, clamped
+  // to the stride's pace range). Both need a stride.
+  double step_at_pace(double pace) const;
+  double pace_at_step(double step) const;
+  // The paces the stride is written for (its input's range).
+  double slowest_pace() const;
+  double fastest_pace() const;
 
   // How the controllers change with the ground (the manifest's "terrain": "slopes" for level
   // ground and ramps, "stairs"): words for the incline (such as down, level, up) peaking at given
@@ -166,6 +187,18 @@ struct ControllerSet {
   // How far the ascent metric holds (0 to 1), and the landing knee (radians), for these metrics.
   double ascent_weight(const MetricValues& metrics) const;
   double landing_knee(const MetricValues& metrics) const;
+
+  // The manifest's numbers, read and written through this one table: key, range, default, and
+  // how a set holds the value (in the manifest's unit).
+  struct ManifestNumber {
+    const char* key;
+    double low;
+    double high;
+    double fallback;
+    double (*get)(const ControllerSet& set);
+    void (*set)(ControllerSet& set, double value);
+  };
+  static std::span<const ManifestNumber> manifest_numbers();
 
   // Reads DIR/manifest.json and the FLL files it names.
   static ControllerSet load(const std::filesystem::path& directory);

@@ -43,6 +43,9 @@ class Crowd {
   // Walker::set_step_length() of character i: the step length now commanded, or NaN (nothing
   // changed) when i is not a character of the crowd.
   double set_step_length(std::size_t i, double metres) noexcept;
+  // Walker::set_speed() of character i: the speed now commanded, or NaN (nothing changed) when i
+  // is not a character of the crowd.
+  double set_speed(std::size_t i, double metres_per_second) noexcept;
   // Every character's Walker::clear_events().
   void clear_events() noexcept;
 

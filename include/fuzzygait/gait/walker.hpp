@@ -16,6 +16,10 @@
 //                    its heel (the only IK in the system) while its ankle lowers the forefoot;
 //                    once that foot is flat (or, landing on the forefoot, at once), the trailing
 //                    leg lifts off (toe off) and the new leg carries the pelvis.
+//   pace             walked by step length, the controllers play as written; walked by speed, each
+//                    step is the set's stride relation's at the speed reached, and every
+//                    controller's velocity plays at the cadence speed / step against the cadence
+//                    the set is written for. "pace" is an input the controllers may read.
 //   joint velocity   follows the controller's command with the set's inertia time constant, so
 //                    velocities never jump, even where a phase hands a joint to another controller.
 //                    What a joint remembers as its speed is capped at about a sprinter's, so that
@@ -68,6 +72,7 @@ struct LegState {
 // Everything that changes while walking: plain data, so many characters pack into arrays.
 struct WalkerState {
   double time = 0.0;
+  double speed = 0.0;  // m/s: the walk's commanded speed now, moving toward the target
   rig::Point pelvis;
   double pelvis_tilt = 0.0;
   std::array<LegState, 2> legs;
@@ -88,7 +93,11 @@ struct StartPose {
 
 struct WalkerOptions {
   rig::Segments segments = rig::segments_from_stature(1.75);
+  // The walk's pace: a step length (the controllers play at the set's own cadence) or, when
+  // `speed` is above 0, a speed whose step follows the set's stride relation (people's step
+  // lengthens with their speed); `step_length` is then ignored.
   double step_length = 0.70;       // metres, heel to heel
+  double speed = 0.0;              // m/s
   double time_step = 1.0 / 240.0;  // seconds (0.00001 to 0.05); advance() subdivides longer frames
   rig::JointLimits limits;
   StartPose start;
@@ -111,7 +120,8 @@ class Walker {
   // The controller set and terrain must outlive the walker and stay unchanged while it walks (it
   // keeps a workspace made for each of the set's controllers). Throws std::invalid_argument naming
   // the field for a bad rig or joint limits, a time step outside 0.00001-0.05 s, an incomplete
-  // set, or a step length outside min_step_length() to max_step_length().
+  // set, a step length outside min_step_length() to max_step_length(), or a speed outside
+  // min_speed() to max_speed() or with a set that has no stride relation.
   Walker(const ControllerSet& controllers, const WalkerOptions& options,
          const terrain::Terrain& terrain);
 
@@ -121,12 +131,24 @@ class Walker {
   // changes nothing when dt is NaN, negative or longer than an hour (kLongestAdvance).
   bool advance(double dt) noexcept;
   // Commands a step length from the next foot placement on: `metres` clamped to
-  // [min_step_length(), max_step_length()]. Returns the step length now commanded (the old one,
+  // [min_step_length(), max_step_length()], played at the set's cadence (a walk by speed eases
+  // back to it at the set's acceleration). Returns the step length now commanded (the old one,
   // unchanged, for NaN).
   double set_step_length(double metres) noexcept;
-  double step_length() const noexcept { return step_length_; }
+  // Commands a speed: `metres_per_second` clamped to [min_speed(), max_speed()], reached at the
+  // set's acceleration, each step the stride relation's at the speed reached. Returns the speed
+  // now commanded; NaN, changing nothing, for NaN or a set without a stride relation.
+  double set_speed(double metres_per_second) noexcept;
+  // The step the next foot placement takes (m).
+  double step_length() const noexcept;
+  // The speed commanded (m/s): by step length, the step at the set's cadence.
+  double speed() const noexcept { return speed_target_; }
   double min_step_length() const noexcept;
   double max_step_length() const noexcept;
+  // The speeds walked by speed (m/s): the stride relation's pace range, within the steps from
+  // min_step_length() to max_step_length(); NaN for a set without a stride relation.
+  double min_speed() const noexcept;
+  double max_speed() const noexcept;
 
   const WalkerState& state() const noexcept { return state_; }
   rig::Pose pose() const noexcept;
@@ -147,6 +169,8 @@ class Walker {
   static double min_step_length(const ControllerSet& controllers, const rig::Segments& segments);
   // Longest step the legs reach (metres): 1.2 leg lengths.
   static double max_step_length(const rig::Segments& segments);
+  // v / sqrt(g * leg length): the pace of a speed (m/s) for these legs (Metric::Pace).
+  static double pace(double speed, const rig::Segments& segments);
 
  private:
   friend struct detail::WalkerStages;
@@ -159,6 +183,9 @@ class Walker {
   void record(rig::Side side, Event event, rig::Point where);
   void strike(int leg, Phase phase, rig::Point contact);
   void lift_off(int leg);
+  double stride_step_at(double speed) const;
+  double step_speed() const;
+  double tempo();
   void hand_over(int leg);
   void place_pelvis(int leg);
   bool close_chain(int leg);
@@ -173,7 +200,14 @@ class Walker {
   const detail::ControllerBackend* backend_ = nullptr;  // null: the set's own engines
   rig::Segments segments_;
   rig::JointLimits limits_;
-  double step_length_;
+  double step_length_;  // the step commanded when walking by step length
+  bool by_speed_ = false;
+  double speed_target_ = 0.0;  // m/s
+  double speed_unit_ = 1.0;    // sqrt(g * leg length): the speed of pace 1
+  // The cadence the controllers play at over the set's, cached for the speed it was computed at.
+  double tempo_ = 1.0;
+  double tempo_speed_ = -1.0;
+  double follow_tempo_ = 0.0;  // the tempo of follow_
   double time_step_;
   double follow_step_ = 0.0;  // the h of follow_
   double follow_ = 0.0;       // share of the way a joint's velocity goes to its command in h

@@ -39,8 +39,18 @@ struct TrainClip {
   double step_length = 0.0;
 };
 
+// What make_train_clip() takes for a level forward walk: planted feet within this of the floor
+// fitted to them (m), a pace (Walker::pace) and a cadence (steps a minute) people walk at.
+inline constexpr double kFloorTolerance = 0.03;
+inline constexpr double kSlowestPace = 0.12;
+inline constexpr double kFastestPace = 0.9;
+inline constexpr double kFewestSteps = 50.0;
+inline constexpr double kMostSteps = 180.0;
+
 // Measures a clip for training. Throws std::invalid_argument (naming `name`) when evaluate()
-// finds no complete cycle in it, or its step is outside the walker's range for its legs.
+// finds no complete cycle in it, when it is no level forward walk (its planted feet further than
+// kFloorTolerance from the floor, its feet landing behind the body, its pace or cadence outside
+// the ranges above), or when its step is outside the walker's range for its legs.
 TrainClip make_train_clip(std::string name, eval::Motion motion, terrain::Terrain ground);
 
 struct TrainProgress {
@@ -73,6 +83,21 @@ struct TrainOptions {
 // significant digits), two threads, words and knots of angles free, the words' promises kept,
 // curve bounds 3.7 deg, a clip's stance and cycle time held firmly, no random starts.
 TrainOptions default_train_options();
+
+// A walk's pace (gait::Walker::pace) and step (leg lengths): a point of the stride relation.
+struct StridePoint {
+  double pace = 0.0;
+  double step = 0.0;
+  double weight = 1.0;
+};
+// The stride points of the clips: each one's pace and step.
+std::vector<StridePoint> stride_points(std::span<const TrainClip> clips);
+// `set` with its stride (ControllerSet::stride) fitted to `points`: every step word's value v
+// becomes a + b v, least squares through the points (b = 1 where they are of one pace), so the
+// relation keeps its shape and words and passes through people's steps. Throws
+// std::invalid_argument when the set has no stride, there is no point, or the fit would make the
+// step shrink as the pace grows.
+gait::ControllerSet fit_stride(const gait::ControllerSet& set, std::span<const StridePoint> points);
 
 // One clip's closed-loop figures: the set walked at the clip's legs and step against its mean
 // cycle.

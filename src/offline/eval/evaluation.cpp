@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -51,22 +52,26 @@ Curve mean_curve(const std::vector<double>& values,
   return c;
 }
 
-JointScore score(const Curve& ours, const Curve& reference) {
+// `offset_free`: the curves compared after removing the difference of their means.
+JointScore score(const Curve& ours, const Curve& reference, bool offset_free = false) {
   JointScore s;
-  double squared = 0.0;
-  int inside = 0;
   double ma = 0.0;
   double mb = 0.0;
   for (int k = 0; k < kCycleSamples; ++k) {
-    const double a = ours.mean[static_cast<std::size_t>(k)];
-    const double b = reference.mean[static_cast<std::size_t>(k)];
-    squared += (a - b) * (a - b);
-    if (std::abs(a - b) <= 2.0 * reference.sd[static_cast<std::size_t>(k)]) ++inside;
-    ma += a;
-    mb += b;
+    ma += ours.mean[static_cast<std::size_t>(k)];
+    mb += reference.mean[static_cast<std::size_t>(k)];
   }
   ma /= kCycleSamples;
   mb /= kCycleSamples;
+  const double shift = offset_free ? ma - mb : 0.0;
+  double squared = 0.0;
+  int inside = 0;
+  for (int k = 0; k < kCycleSamples; ++k) {
+    const double a = ours.mean[static_cast<std::size_t>(k)];
+    const double b = reference.mean[static_cast<std::size_t>(k)] + shift;
+    squared += (a - b) * (a - b);
+    if (std::abs(a - b) <= 2.0 * reference.sd[static_cast<std::size_t>(k)]) ++inside;
+  }
   double sab = 0.0;
   double saa = 0.0;
   double sbb = 0.0;
@@ -309,19 +314,47 @@ GaitReport evaluate(const Motion& m, const terrain::Terrain& terrain, const Norm
                             *std::min_element(pelvis.mean.begin(), pelvis.mean.end());
   r.thigh_range = *std::max_element(r.thigh.mean.begin(), r.thigh.mean.end()) -
                   *std::min_element(r.thigh.mean.begin(), r.thigh.mean.end());
+  {
+    constexpr std::size_t kHalf = kCycleSamples / 2;
+    r.thigh_overshoot =
+        *std::max_element(r.thigh.mean.begin() + kHalf, r.thigh.mean.end()) - r.thigh.mean.back();
+    r.knee_loading_peak = *std::max_element(r.knee.mean.begin(), r.knee.mean.begin() + 16);
+    r.ankle_push_off = *std::min_element(r.ankle.mean.begin() + 20, r.ankle.mean.begin() + 41);
+  }
+  // Body travel: the pelvis's speed over kTravelWindow, against each cycle's mean.
+  {
+    const auto half =
+        static_cast<std::size_t>(std::max(1.0, std::round(0.5 * kTravelWindow * m.fps)));
+    const double span = 2.0 * static_cast<double>(half) * dt;
+    r.pelvis_speed_ratio_min = std::numeric_limits<double>::infinity();
+    r.pelvis_speed_ratio_max = -std::numeric_limits<double>::infinity();
+    for (const auto& [a, b] : cycles) {
+      const double mean_speed = (m.frames[b].pose.pelvis.x - m.frames[a].pose.pelvis.x) /
+                                (static_cast<double>(b - a) * dt);
+      for (std::size_t k = a; k < b; ++k) {
+        if (k < half || k + half >= n) continue;
+        const rig::Point& before = m.frames[k - half].pose.pelvis;
+        const rig::Point& after = m.frames[k + half].pose.pelvis;
+        const double ratio = (after.x - before.x) / span / mean_speed;
+        r.pelvis_speed_ratio_min = std::min(r.pelvis_speed_ratio_min, ratio);
+        r.pelvis_speed_ratio_max = std::max(r.pelvis_speed_ratio_max, ratio);
+        r.pelvis_rise_speed = std::max(r.pelvis_rise_speed, (after.y - before.y) / span);
+      }
+    }
+  }
   const CurvePeak knee_peak = swing_peak(r.knee);
   r.knee_peak = knee_peak.value;
   r.knee_peak_percent = knee_peak.percent;
   if (reference) {
-    auto scored = [&](const Curve& walk, const Curve& people) {
-      JointScore s = score(walk, people);
+    auto scored = [&](const Curve& walk, const Curve& people, bool offset_free = false) {
+      JointScore s = score(walk, people, offset_free);
       s.acceleration_rms = cycle_acceleration_rms(walk, r.cycle_time);
       s.reference_acceleration_rms = cycle_acceleration_rms(people, r.cycle_time);
       return s;
     };
     r.thigh_score = scored(r.thigh, reference->thigh);
     r.knee_score = scored(r.knee, reference->knee);
-    r.ankle_score = scored(r.ankle, reference->ankle);
+    r.ankle_score = scored(r.ankle, reference->ankle, reference->ankle_offset_unknown);
   }
 
   // Smoothness: how much a joint's velocity changes from one frame to the next, at phase
@@ -397,6 +430,12 @@ std::string to_text(const GaitReport& r) {
   row("  at", r.knee_peak_percent, "% of cycle");
   row("thigh range", r.thigh_range, "deg");
   row("pelvis vertical range", r.pelvis_vertical_range * 1000.0, "mm");
+  row("pelvis speed, lowest", r.pelvis_speed_ratio_min, "of the cycle's mean");
+  row("pelvis speed, highest", r.pelvis_speed_ratio_max, "of the cycle's mean");
+  row("pelvis rising, fastest", r.pelvis_rise_speed, "m/s");
+  row("thigh overshoot", r.thigh_overshoot, "deg past contact");
+  row("knee in loading response", r.knee_loading_peak, "deg");
+  row("ankle at push off", r.ankle_push_off, "deg");
   row("max foot slip in contact", r.max_slip * 1000.0, "mm per frame");
   row("max penetration", r.max_penetration * 1000.0, "mm");
   row("min toe clearance, swing", r.min_toe_clearance * 1000.0, "mm");
@@ -441,6 +480,12 @@ std::string to_json(const GaitReport& r) {
   j["knee_peak_percent"] = r.knee_peak_percent;
   j["thigh_range_deg"] = r.thigh_range;
   j["pelvis_vertical_range_m"] = r.pelvis_vertical_range;
+  j["pelvis_speed_ratio_min"] = r.pelvis_speed_ratio_min;
+  j["pelvis_speed_ratio_max"] = r.pelvis_speed_ratio_max;
+  j["pelvis_rise_speed_m_per_s"] = r.pelvis_rise_speed;
+  j["thigh_overshoot_deg"] = r.thigh_overshoot;
+  j["knee_loading_peak_deg"] = r.knee_loading_peak;
+  j["ankle_push_off_deg"] = r.ankle_push_off;
   j["max_slip_m_per_frame"] = r.max_slip;
   j["max_penetration_m"] = r.max_penetration;
   j["min_toe_clearance_m"] = r.min_toe_clearance;

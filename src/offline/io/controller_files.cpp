@@ -15,13 +15,10 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
   nlohmann::ordered_json manifest;
   manifest["name"] = set.name;
   manifest["description"] = set.description;
-  manifest["inertia_s"] = set.inertia;
-  manifest["pelvis_tilt_deg"] = std::round(rig::degrees(set.pelvis_tilt) * 1e6) / 1e6;
-  if (set.swing_knee_reference_sweep > 0.0) {
-    manifest["swing_knee_reference_sweep_deg"] =
-        std::round(rig::degrees(set.swing_knee_reference_sweep) * 1e6) / 1e6;
-  }
-  manifest["shortest_step_leg_lengths"] = set.shortest_step;
+  // The manifest's numbers, as the reader's table names them (to a millionth, so that degrees
+  // held in radians come back as written).
+  for (const gait::ControllerSet::ManifestNumber& n : gait::ControllerSet::manifest_numbers())
+    manifest[n.key] = std::round(n.get(set) * 1e6) / 1e6;
   if (set.body && set.body_step_length) {
     // To a tenth of a millimetre.
     auto length = [](double metres) { return std::round(metres * 1e4) / 1e4; };
@@ -34,6 +31,7 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
     body["ball_m"] = length(b.ball);
     body["toe_m"] = length(b.toe);
     body["step_length_m"] = length(*set.body_step_length);
+    if (set.body_speed) body["speed_m_s"] = std::round(*set.body_speed * 1e4) / 1e4;
     manifest["body"] = body;
   }
   nlohmann::ordered_json files;
@@ -44,6 +42,10 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
                fuzzy::write_fll(set.controllers.at(static_cast<std::size_t>(s)).engine()));
   }
   manifest["controllers"] = files;
+  if (set.stride) {
+    manifest["stride"] = "stride.fll";
+    write_file(directory / "stride.fll", fuzzy::write_fll(set.stride->engine()));
+  }
   // The terrain words: each kind of ground's words, and its files named GROUND_SLOT_WORD.fll.
   nlohmann::ordered_json terrain;
   constexpr std::array<const char*, gait::kGroundCount> kGroundNames = {"slopes", "stairs"};

@@ -1,8 +1,10 @@
 #include "fuzzygait/io/normative.hpp"
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <istream>
+#include <optional>
 #include <sstream>
 
 #include "csv.hpp"
@@ -15,14 +17,23 @@ namespace fuzzygait::io {
 eval::Normative read_normative_csv(std::istream& in, std::string_view source) {
   const std::string where(source);
   std::string line;
-  if (!std::getline(in, line)) throw fuzzy::ParseError(where, 1, "the file is empty");
+  int number = 0;
+  // Comment lines (#) before the header; one that says "ankle offset unknown" marks a source
+  // whose ankle zero is its own (eval::Normative::ankle_offset_unknown).
+  bool ankle_offset_unknown = false;
+  do {
+    if (!std::getline(in, line)) throw fuzzy::ParseError(where, number + 1, "the file is empty");
+    ++number;
+    if (line.starts_with("#") && line.find("ankle offset unknown") != std::string::npos) {
+      ankle_offset_unknown = true;
+    }
+  } while (line.starts_with("#"));
   const std::vector<std::string> header = detail::split_csv_line(line);
   const std::string wanted[] = {"percent",   "hip_mean",         "hip_sd",
                                 "knee_mean", "knee_sd",          "ankle_mean",
                                 "ankle_sd",  "pelvis_tilt_mean", "pelvis_tilt_sd"};
   const std::vector<std::size_t> column = detail::required_columns(header, wanted, where);
   std::vector<std::array<double, 9>> rows;
-  int number = 1;
   while (std::getline(in, line)) {
     ++number;
     if (line.empty() || line == "\r") continue;
@@ -64,6 +75,7 @@ eval::Normative read_normative_csv(std::istream& in, std::string_view source) {
   };
   eval::Normative n;
   n.name = where;
+  n.ankle_offset_unknown = ankle_offset_unknown;
   for (int s = 0; s < eval::kCycleSamples; ++s) {
     const double percent = 2.0 * s;
     const auto i = static_cast<std::size_t>(s);
@@ -120,6 +132,66 @@ eval::Normative load_normative(std::string_view name_or_path) {
                                 ") nor a readable file");
   }
   return read_normative_csv(in, name_or_path);
+}
+
+std::vector<GaitParameters> load_gait_parameters(std::string_view source) {
+  const std::string path = "parameters/" + std::string(source) + "_parameters.csv";
+  for (const detail::EmbeddedFile& f : detail::embedded_files()) {
+    if (f.path != path) continue;
+    const std::string where = "data/" + path;
+    std::istringstream in{std::string(f.text)};
+    std::string line;
+    int number = 0;
+    do {
+      std::getline(in, line);
+      ++number;
+    } while (line.starts_with("#"));
+    const std::vector<std::string> header = detail::split_csv_line(line);
+    const std::string wanted[] = {
+        "task",        "speed_bh_mean",       "speed_bh_sd",      "cadence_mean", "cadence_sd",
+        "step_m_mean", "step_m_sd",           "stride_bh_mean",   "stride_bh_sd", "stance_mean",
+        "stance_sd",   "double_support_mean", "double_support_sd"};
+    const std::vector<std::size_t> column = detail::required_columns(header, wanted, where);
+    std::vector<GaitParameters> out;
+    while (std::getline(in, line)) {
+      ++number;
+      if (line.empty()) continue;
+      const std::vector<std::string> cells = detail::split_csv_line(line);
+      std::array<double, 12> v{};
+      for (std::size_t k = 1; k < column.size(); ++k) {
+        const std::optional<double> x =
+            column[k] < cells.size() ? fuzzy::parse_scalar(cells[column[k]]) : std::nullopt;
+        if (!x || !std::isfinite(*x)) {
+          throw fuzzy::ParseError(where, number, "column '" + wanted[k] + "' is not a number");
+        }
+        v[k - 1] = *x;
+      }
+      GaitParameters p;
+      p.task = cells.at(column[0]);
+      p.curves = std::string(source) + "_" + p.task;
+      p.speed_per_height = {v[0] / 100.0, v[1] / 100.0};
+      p.cadence = {v[2], v[3]};
+      p.step_length = {v[4], v[5]};
+      p.stride_per_height = {v[6] / 100.0, v[7] / 100.0};
+      p.stance = {v[8], v[9]};
+      p.double_support = {v[10], v[11]};
+      out.push_back(p);
+    }
+    return out;
+  }
+  throw std::invalid_argument("no built-in gait parameters '" + std::string(source) +
+                              "' (built in: bovi2011_adult)");
+}
+
+std::vector<GaitParameters> level_speeds() {
+  std::vector<GaitParameters> all = load_gait_parameters("bovi2011_adult");
+  std::vector<GaitParameters> level;
+  for (const char* task : {"xs", "s", "natural", "m", "l"}) {
+    for (const GaitParameters& p : all) {
+      if (p.task == task) level.push_back(p);
+    }
+  }
+  return level;
 }
 
 }  // namespace fuzzygait::io

@@ -85,6 +85,64 @@ class ClosedLoop {
 
 }  // namespace
 
+namespace {
+
+// The median of `values` (which it reorders); 0 for none.
+double median(std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// Why a clip is no level forward walk to train on, or "" when it is one: its planted feet off
+// the fitted floor, feet landing behind the body (a backward walk), or a pace no walk has (a
+// slow-motion or sped-up clip).
+std::string not_a_level_walk(const eval::Motion& motion, const terrain::Terrain& ground,
+                             const eval::GaitReport& report) {
+  char line[200];
+  // Planted feet: their lowest point (heel or ball) on the floor.
+  std::vector<double> heights;
+  std::vector<double> ahead;  // a striking heel's distance ahead of the pelvis
+  for (std::size_t i = 0; i < motion.frames.size(); ++i) {
+    const eval::Frame& f = motion.frames[i];
+    for (std::size_t s = 0; s < 2; ++s) {
+      if (!f.contact[s]) continue;
+      const rig::LegPoints& p = f.points[s];
+      heights.push_back(
+          std::min(p.heel.y - ground.height(p.heel.x), p.ball.y - ground.height(p.ball.x)));
+      if (i > 0 && !motion.frames[i - 1].contact[s]) ahead.push_back(p.heel.x - f.pose.pelvis.x);
+    }
+  }
+  const double floor = median(heights);
+  if (std::abs(floor) > kFloorTolerance) {
+    std::snprintf(line, sizeof line,
+                  "its planted feet sit %.1f cm %s the floor fitted to them (the ground is not "
+                  "level and even, or the feet are not where the skeleton says)",
+                  100.0 * std::abs(floor), floor < 0.0 ? "below" : "above");
+    return line;
+  }
+  if (!ahead.empty() && median(ahead) < 0.0) {
+    std::snprintf(line, sizeof line,
+                  "its feet land %.2f m behind the body: a backward walk, not a forward one",
+                  -median(ahead));
+    return line;
+  }
+  const double pace = gait::Walker::pace(report.speed, motion.segments);
+  if (!(pace >= kSlowestPace && pace <= kFastestPace) ||
+      !(report.cadence >= kFewestSteps && report.cadence <= kMostSteps)) {
+    std::snprintf(line, sizeof line,
+                  "it walks %.2f m/s at %.0f steps a minute (pace %.2f), outside any walk (pace "
+                  "%.2f-%.2f, %.0f-%.0f steps a minute): a slowed or sped-up clip?",
+                  report.speed, report.cadence, pace, kSlowestPace, kFastestPace, kFewestSteps,
+                  kMostSteps);
+    return line;
+  }
+  return {};
+}
+
+}  // namespace
+
 TrainClip make_train_clip(std::string name, eval::Motion motion, terrain::Terrain ground) {
   TrainClip clip;
   clip.name = std::move(name);
@@ -93,6 +151,9 @@ TrainClip make_train_clip(std::string name, eval::Motion motion, terrain::Terrai
     clip.report = eval::evaluate(motion, ground);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(clip.name + ": cannot train on it: " + e.what());
+  }
+  if (const std::string why = not_a_level_walk(motion, ground, clip.report); !why.empty()) {
+    throw std::invalid_argument(clip.name + ": not a level forward walk to train on: " + why);
   }
   clip.step_length = clip.report.step_length;
   const double longest = gait::Walker::max_step_length(motion.segments);
@@ -285,14 +346,58 @@ StartsCheck check_starts(const gait::ControllerSet& set, const rig::Segments& bo
   return check;
 }
 
+std::vector<StridePoint> stride_points(std::span<const TrainClip> clips) {
+  std::vector<StridePoint> points;
+  for (const TrainClip& c : clips) {
+    const rig::Segments& s = c.motion.segments;
+    points.push_back({gait::Walker::pace(c.report.speed, s), c.step_length / s.leg_length(), 1.0});
+  }
+  return points;
+}
+
+gait::ControllerSet fit_stride(const gait::ControllerSet& set,
+                               std::span<const StridePoint> points) {
+  if (!set.stride) throw std::invalid_argument("fit_stride: the set has no stride");
+  if (points.empty()) throw std::invalid_argument("fit_stride: no points to fit");
+  // Weighted least squares of step = a + b v(pace), v the stride as it is.
+  double sw = 0.0, sv = 0.0, ss = 0.0, svv = 0.0, svs = 0.0;
+  for (const StridePoint& p : points) {
+    const double v = set.step_at_pace(p.pace);
+    sw += p.weight;
+    sv += p.weight * v;
+    ss += p.weight * p.step;
+    svv += p.weight * v * v;
+    svs += p.weight * v * p.step;
+  }
+  const double spread = svv - sv * sv / sw;
+  double b = 1.0;
+  if (spread > 1e-9 * std::max(1.0, svv)) b = (svs - sv * ss / sw) / spread;
+  if (!(b > 0.0)) {
+    throw std::invalid_argument(
+        "fit_stride: the walks' steps shrink as their pace grows; no stride fits them");
+  }
+  const double a = (ss - b * sv) / sw;
+  fuzzy::Engine engine = set.stride->engine();
+  for (fuzzy::Term& t : engine.outputs.at(0).terms) {
+    if (t.kind == fuzzy::TermKind::Constant) {
+      t.parameters[0] = detail::round_significant(a + b * t.parameters[0], 3);
+    }
+  }
+  gait::ControllerSet fitted = set;
+  fitted.stride.emplace(std::move(engine), set.stride->source());
+  return fitted;
+}
+
 TrainResult train(const gait::ControllerSet& base, std::span<const TrainClip> clips,
                   const TrainOptions& options) {
   if (clips.empty()) throw std::invalid_argument("train: no clips");
   const Clock::time_point start = Clock::now();
   TrainResult result;
   if (options.structure) result.added = learning_structure(base);
-  // The set the training starts from: the base with the added words.
-  const gait::ControllerSet first = with_words(base, result.added);
+  // The set the training starts from: the base with the added words, its stride (when it has
+  // one) through the clips' steps.
+  gait::ControllerSet first = with_words(base, result.added);
+  if (first.stride) first = fit_stride(first, stride_points(clips));
   const SetNetwork network(first);
   auto stopped = [&options] { return options.stop && options.stop(); };
   auto scores = [&clips](const gait::ControllerSet& set) {

@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "fuzzygait/gait/walker.hpp"
 #include "runtime/common/format.hpp"
 #include "runtime/gait/leg_metrics.hpp"
 
@@ -101,6 +102,8 @@ TrainingClip training_data(const eval::Motion& motion, const terrain::Terrain& g
   clip.swing_knee_reference_sweep = set.swing_knee_reference_sweep;
   clip.segments = motion.segments;
   clip.step_length = step_length;
+  // The pace a walker walking this step by step length reads (the step at the set's cadence).
+  const double pace = gait::Walker::pace(step_length * set.cadence / 60.0, clip.segments);
   const double tilt = set.pelvis_tilt;
   const double h = options.time_step;
   const double duration = motion.frames.back().time - motion.frames.front().time;
@@ -186,6 +189,7 @@ TrainingClip training_data(const eval::Motion& motion, const terrain::Terrain& g
       const rig::LegAngles& a = out.angles;
       gait::detail::leg_metrics(tilt, a.hip, a.knee, a.ankle, a.toe, out.sweep_start, out.sweep_end,
                                 out.slope, out.metrics);
+      out.metrics[static_cast<std::size_t>(gait::Metric::Pace)] = pace;
     }
     // The other leg's progress; who carries in double support (the leg planted first).
     for (std::size_t leg = 0; leg < 2; ++leg) {

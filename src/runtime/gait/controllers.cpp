@@ -19,7 +19,7 @@ constexpr std::array<std::string_view, kSlotCount> kSlotNames = {
     "swing_hip",  "swing_knee",  "swing_ankle",  "swing_toe",
     "stance_hip", "stance_knee", "stance_ankle", "stance_toe"};
 constexpr std::array<std::string_view, kMetricCount> kMetricNames = {
-    "delta", "other_delta", "hip", "knee", "ankle", "toe", "sole", "incline", "stairs"};
+    "delta", "other_delta", "hip", "knee", "ankle", "toe", "sole", "incline", "stairs", "pace"};
 
 using fuzzygait::common::number_text;
 using fuzzygait::common::json::Value;
@@ -58,7 +58,8 @@ std::size_t slot_index(std::string_view name) {
 }
 
 // The manifest's "body": {"thigh_m": ..., "shank_m": ..., "ankle_height_m": ..., "heel_m": ...,
-// "ball_m": ..., "toe_m": ..., "step_length_m": ...}, every field required.
+// "ball_m": ..., "toe_m": ..., "step_length_m": ..., "speed_m_s": ...}, every field required but
+// the speed.
 void read_body(const Value& body, const std::string& source, ControllerSet& set) {
   if (body.kind != Value::Kind::Object) {
     throw std::invalid_argument(where(source, body) + "'body' must be an object of lengths");
@@ -66,11 +67,11 @@ void read_body(const Value& body, const std::string& source, ControllerSet& set)
   for (const auto& [key, value] : body.object) {
     const bool known = key == "thigh_m" || key == "shank_m" || key == "ankle_height_m" ||
                        key == "heel_m" || key == "ball_m" || key == "toe_m" ||
-                       key == "step_length_m";
+                       key == "step_length_m" || key == "speed_m_s";
     if (!known) {
       throw std::invalid_argument(where(source, value) + "'body' has no field '" + key +
                                   "' (thigh_m, shank_m, ankle_height_m, heel_m, ball_m, toe_m, "
-                                  "step_length_m)");
+                                  "step_length_m, speed_m_s)");
     }
   }
   auto length = [&](const char* key) {
@@ -87,6 +88,7 @@ void read_body(const Value& body, const std::string& source, ControllerSet& set)
   s.ball = length("ball_m");
   s.toe = length("toe_m");
   set.body_step_length = length("step_length_m");
+  if (body.find("speed_m_s")) set.body_speed = number(body, "speed_m_s", 0.0, 0.01, 20.0, source);
   try {
     rig::validate(s);
   } catch (const std::invalid_argument& e) {
@@ -203,6 +205,51 @@ void read_ground(const Value& ground, const std::string& name,
       controllers.emplace_back(
           fuzzy::read_fll(text->second, path, fuzzy::FllOptions{.finite_numbers = true}), path);
     }
+  }
+}
+
+// The manifest's "stride": the FLL file of the stride relation, one input "pace" and one output
+// (the step, leg lengths) that rises with the pace over the input's range.
+void read_stride(const Value& stride, const std::map<std::string, std::string>& files,
+                 const std::string& source, const std::string& manifest_source,
+                 ControllerSet& set) {
+  if (stride.kind != Value::Kind::String) {
+    throw std::invalid_argument(where(manifest_source, stride) +
+                                "'stride' must name an FLL file (a string)");
+  }
+  const auto text = files.find(stride.string);
+  if (text == files.end()) {
+    throw std::invalid_argument(where(manifest_source, stride) + "'stride' names '" +
+                                stride.string + "', which is not in the set");
+  }
+  const std::string path = source + "/" + stride.string;
+  Controller c(fuzzy::read_fll(text->second, path, fuzzy::FllOptions{.finite_numbers = true}),
+               path);
+  if (c.input_count() != 1 || c.input(0) != Metric::Pace) {
+    throw std::invalid_argument(path + ": the stride reads one input, 'pace'");
+  }
+  const fuzzy::InputVariable& pace = c.engine().inputs.front();
+  if (!(pace.minimum > 0.0 && pace.maximum > pace.minimum && pace.maximum <= 2.0)) {
+    throw std::invalid_argument(path + ": the stride's 'pace' range must lie within 0 to 2, got " +
+                                number_text(pace.minimum) + " " + number_text(pace.maximum));
+  }
+  set.stride.emplace(std::move(c));
+  // People's steps lengthen with their pace: a stride that does not would make a speed ask for two
+  // steps, or none.
+  constexpr int kSamples = 200;
+  double before = set.step_at_pace(pace.minimum);
+  for (int i = 1; i <= kSamples; ++i) {
+    const double p = pace.minimum + (pace.maximum - pace.minimum) * i / kSamples;
+    const double step = set.step_at_pace(p);
+    if (!(step > before) || !(step >= 0.1 && step <= 2.0)) {
+      throw std::invalid_argument(
+          path +
+          ": the step must rise with the pace and lie between 0.1 and 2 leg lengths; at "
+          "pace " +
+          number_text(p, 3) + " it is " + number_text(step, 4) + " after " +
+          number_text(before, 4));
+    }
+    before = step;
   }
 }
 
@@ -408,13 +455,8 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
   ControllerSet set;
   set.name = text(manifest, "name", manifest_source);
   set.description = text(manifest, "description", manifest_source);
-  set.inertia = number(manifest, "inertia_s", 0.03, 0.001, 1.0, manifest_source);
-  set.pelvis_tilt =
-      rig::radians(number(manifest, "pelvis_tilt_deg", 11.0, -45.0, 45.0, manifest_source));
-  set.swing_knee_reference_sweep = rig::radians(
-      number(manifest, "swing_knee_reference_sweep_deg", 0.0, 0.0, 180.0, manifest_source));
-  set.shortest_step =
-      number(manifest, "shortest_step_leg_lengths", 0.46, 0.1, 1.2, manifest_source);
+  for (const ManifestNumber& n : manifest_numbers())
+    n.set(set, number(manifest, n.key, n.fallback, n.low, n.high, manifest_source));
   if (const Value* body = manifest.find("body")) read_body(*body, manifest_source, set);
   const Value* names = manifest.find("controllers");
   if (!names || names->kind != Value::Kind::Object) {
@@ -450,10 +492,60 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
     set.controllers.emplace_back(
         fuzzy::read_fll(text->second, path, fuzzy::FllOptions{.finite_numbers = true}), path);
   }
+  if (const Value* stride = manifest.find("stride")) {
+    read_stride(*stride, files, source, manifest_source, set);
+  }
   if (const Value* terrain = manifest.find("terrain")) {
     read_terrain(*terrain, files, source, manifest_source, set);
   }
   return set;
+}
+
+std::span<const ControllerSet::ManifestNumber> ControllerSet::manifest_numbers() {
+  using S = ControllerSet;
+  static const std::array<ManifestNumber, 6> kNumbers = {{
+      {"inertia_s", 0.001, 1.0, 0.03, [](const S& s) { return s.inertia; },
+       [](S& s, double v) { s.inertia = v; }},
+      {"pelvis_tilt_deg", -45.0, 45.0, 11.0, [](const S& s) { return rig::degrees(s.pelvis_tilt); },
+       [](S& s, double v) { s.pelvis_tilt = rig::radians(v); }},
+      {"swing_knee_reference_sweep_deg", 0.0, 180.0, 0.0,
+       [](const S& s) { return rig::degrees(s.swing_knee_reference_sweep); },
+       [](S& s, double v) { s.swing_knee_reference_sweep = rig::radians(v); }},
+      {"shortest_step_leg_lengths", 0.1, 1.2, 0.46, [](const S& s) { return s.shortest_step; },
+       [](S& s, double v) { s.shortest_step = v; }},
+      {"cadence_steps_per_min", 30.0, 240.0, 110.0, [](const S& s) { return s.cadence; },
+       [](S& s, double v) { s.cadence = v; }},
+      {"acceleration_m_s2", 0.05, 10.0, 0.6, [](const S& s) { return s.acceleration; },
+       [](S& s, double v) { s.acceleration = v; }},
+  }};
+  return kNumbers;
+}
+
+double ControllerSet::step_at_pace(double pace) const {
+  MetricValues m{};
+  m[static_cast<std::size_t>(Metric::Pace)] = pace;
+  fuzzy::Workspace none;
+  return stride->evaluate(m, none);
+}
+
+double ControllerSet::slowest_pace() const {
+  return stride->engine().inputs.front().minimum;
+}
+
+double ControllerSet::fastest_pace() const {
+  return stride->engine().inputs.front().maximum;
+}
+
+double ControllerSet::pace_at_step(double step) const {
+  double low = slowest_pace();
+  double high = fastest_pace();
+  if (!(step > step_at_pace(low))) return low;
+  if (!(step < step_at_pace(high))) return high;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (low + high);
+    (step_at_pace(mid) < step ? low : high) = mid;
+  }
+  return 0.5 * (low + high);
 }
 
 ControllerSet ControllerSet::load(const std::filesystem::path& directory) {

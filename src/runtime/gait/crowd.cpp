@@ -82,6 +82,11 @@ double Crowd::set_step_length(std::size_t i, double metres) noexcept {
   return walkers_[i].set_step_length(metres);
 }
 
+double Crowd::set_speed(std::size_t i, double metres_per_second) noexcept {
+  if (i >= walkers_.size()) return std::numeric_limits<double>::quiet_NaN();
+  return walkers_[i].set_speed(metres_per_second);
+}
+
 void Crowd::clear_events() noexcept {
   for (Walker& w : walkers_)
     w.clear_events();

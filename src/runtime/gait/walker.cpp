@@ -209,13 +209,31 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
     throw std::invalid_argument("time step must be between 0.00001 and 0.05 s, got " +
                                 number_text(time_step_));
   }
-  if (!(options.step_length >= min_step_length() && options.step_length <= max_step_length())) {
+  speed_unit_ = std::sqrt(kGravity * segments_.leg_length());
+  by_speed_ = !(options.speed == 0.0);
+  if (by_speed_) {
+    if (!controllers.stride) {
+      throw std::invalid_argument("the controller set '" + controllers.name +
+                                  "' has no stride relation (the manifest's 'stride'): walk it by "
+                                  "step length");
+    }
+    if (!(options.speed >= min_speed() && options.speed <= max_speed())) {
+      throw std::invalid_argument("speed must be between " + number_text(min_speed(), 3) + " and " +
+                                  number_text(max_speed(), 3) + " m/s (the paces '" +
+                                  controllers_->name + "' walks with these legs), got " +
+                                  number_text(options.speed) + " m/s");
+    }
+    speed_target_ = options.speed;
+  } else if (!(options.step_length >= min_step_length() &&
+               options.step_length <= max_step_length())) {
     throw std::invalid_argument(
         "step length must be between " + number_text(min_step_length(), 3) + " m (" +
         number_text(controllers_->shortest_step) + " leg lengths, the shortest '" +
         controllers_->name + "' walks) and " + number_text(max_step_length(), 3) + " m (" +
         number_text(kLongestStep) + " leg lengths, the reach of these legs), got " +
         number_text(options.step_length) + " m");
+  } else {
+    speed_target_ = step_speed();
   }
   workspaces_.reserve(controllers.controller_count());
   for (const Controller& c : controllers.controllers)
@@ -237,9 +255,65 @@ double Walker::max_step_length() const noexcept {
   return kLongestStep * segments_.leg_length();
 }
 
+double Walker::pace(double speed, const rig::Segments& s) {
+  return speed / std::sqrt(kGravity * s.leg_length());
+}
+
 double Walker::set_step_length(double metres) noexcept {
-  if (!std::isnan(metres)) step_length_ = std::clamp(metres, min_step_length(), max_step_length());
+  if (std::isnan(metres)) return step_length_;
+  step_length_ = std::clamp(metres, min_step_length(), max_step_length());
+  by_speed_ = false;
+  speed_target_ = step_speed();
   return step_length_;
+}
+
+double Walker::set_speed(double metres_per_second) noexcept {
+  if (std::isnan(metres_per_second) || !controllers_->stride) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  speed_target_ = std::clamp(metres_per_second, min_speed(), max_speed());
+  by_speed_ = true;
+  return speed_target_;
+}
+
+double Walker::step_length() const noexcept {
+  return by_speed_ ? stride_step_at(state_.speed) : step_length_;
+}
+
+double Walker::step_speed() const {
+  return step_length_ * controllers_->cadence / 60.0;
+}
+
+double Walker::stride_step_at(double speed) const {
+  return std::clamp(controllers_->step_at_pace(speed / speed_unit_) * segments_.leg_length(),
+                    min_step_length(), max_step_length());
+}
+
+double Walker::min_speed() const noexcept {
+  if (!controllers_->stride) return std::numeric_limits<double>::quiet_NaN();
+  const double legs = segments_.leg_length();
+  return std::max(controllers_->slowest_pace(),
+                  controllers_->pace_at_step(min_step_length() / legs)) *
+         speed_unit_;
+}
+
+double Walker::max_speed() const noexcept {
+  if (!controllers_->stride) return std::numeric_limits<double>::quiet_NaN();
+  const double legs = segments_.leg_length();
+  return std::min(controllers_->fastest_pace(),
+                  controllers_->pace_at_step(max_step_length() / legs)) *
+         speed_unit_;
+}
+
+// The cadence the controllers play at over the set's: 1 walking by step length, speed / step
+// over the set's cadence walking by speed.
+double Walker::tempo() {
+  if (!by_speed_) return 1.0;
+  if (!(state_.speed == tempo_speed_)) {
+    tempo_speed_ = state_.speed;
+    tempo_ = state_.speed / step_length() * 60.0 / controllers_->cadence;
+  }
+  return tempo_;
 }
 
 rig::Pose Walker::pose() const noexcept {
@@ -299,7 +373,7 @@ void Walker::record(rig::Side side, Event event, Point where) {
 }
 
 double Walker::stance_target() const {
-  return detail::stance_target(segments_, step_length_);
+  return detail::stance_target(segments_, step_length());
 }
 
 void Walker::start(const StartPose& start_pose) {
@@ -312,7 +386,8 @@ void Walker::start(const StartPose& start_pose) {
   // The default start's thigh angles and speeds are those of a 0.70 m step of a 1.75 m adult,
   // scaled to this step for this leg (a short step of a long leg sweeps a small angle).
   const double reference = 0.70 / rig::segments_from_stature(1.75).leg_length();
-  const double scale = std::clamp(step_length_ / segments_.leg_length() / reference, 0.5, 1.5);
+  state_.speed = speed_target_;
+  const double scale = std::clamp(step_length() / segments_.leg_length() / reference, 0.5, 1.5);
   if (start_pose.random) {
     // Seeds hashed apart first, so nearby seeds do not walk the same sequence.
     std::uint64_t x = (start_pose.seed ^ 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull;
@@ -346,8 +421,11 @@ void Walker::start(const StartPose& start_pose) {
     right.angles = {rig::radians(8.0 * scale) + tilt, rig::radians(12.0), 0.0, 0.0};
     left.angles = {rig::radians(-14.0 * scale) + tilt, rig::radians(45.0), rig::radians(-12.0),
                    rig::radians(25.0)};
-    left.velocity = {rig::radians(150.0 * scale), rig::radians(300.0), rig::radians(60.0), 0.0};
-    right.velocity = {rig::radians(-80.0 * scale), 0.0, 0.0, 0.0};
+    // (played at the walk's tempo, as the controllers are)
+    const double tempo = this->tempo();
+    left.velocity = {rig::radians(150.0 * scale) * tempo, rig::radians(300.0) * tempo,
+                     rig::radians(60.0) * tempo, 0.0};
+    right.velocity = {rig::radians(-80.0 * scale) * tempo, 0.0, 0.0, 0.0};
   }
   // Put the lower foot on the ground with the pelvis above x = 0.
   state_.pelvis = {0.0, 0.0};
@@ -473,7 +551,7 @@ void Walker::lift_off(int leg) {
   // A step of the commanded length along the ground, moved to where the whole foot stands on one
   // tread, at most a stair up or down from the tread the other foot stands on.
   const terrain::Terrain::Foothold target = terrain_->foothold(
-      other ? other->anchor.x : from, terrain_->ahead_along_ground(from, step_length_),
+      other ? other->anchor.x : from, terrain_->ahead_along_ground(from, step_length()),
       segments_.foot_length(), kFootholdMargin, min_step_length());
   l.step_from_x = l.strike_x;
   l.target_x = target.heel_x;
@@ -681,7 +759,7 @@ void Walker::keep_knee_up(int leg, double known_good) {
   if (l.phase == Phase::Ball) l.angles.toe = slope - foot_of(state_.pelvis_tilt, l.angles);
   LegState& other = state_.legs[static_cast<std::size_t>(1 - leg)];
   if (other.phase == Phase::Swing) {
-    other.target_x = std::max(other.target_x, state_.pelvis.x + 0.5 * step_length_);
+    other.target_x = std::max(other.target_x, state_.pelvis.x + 0.5 * step_length());
   }
 }
 
@@ -833,10 +911,12 @@ void WalkerStages::measure(Walker& w, StepData& d) {
   std::array<MetricValues, 2>& metrics = d.metrics;
   const std::array<LegGround, 2> ground = leg_ground(w);
   const ControllerSet& set = *w.controllers_;
+  const double pace = w.state_.speed / w.speed_unit_;
   for (int leg = 0; leg < 2; ++leg) {
     const auto k = static_cast<std::size_t>(leg);
     metrics[k][static_cast<std::size_t>(Metric::Incline)] = ground[k].incline;
     metrics[k][static_cast<std::size_t>(Metric::Stairs)] = ground[k].stairs;
+    metrics[k][static_cast<std::size_t>(Metric::Pace)] = pace;
     update_metrics(w, leg, w.end_points_[k], set.ascent_weight(metrics[k]),
                    set.landing_knee(metrics[k]), metrics[k]);
   }
@@ -928,11 +1008,14 @@ double WalkerStages::knee_end_thigh(const Walker& w, int leg, Point hip, Point t
 }
 
 void WalkerStages::integrate(Walker& w, double h, StepData& d) {
-  // advance() splits a frame into equal sub-steps, so h changes only with the frame's length:
-  // exp() is recomputed only when h changes.
-  if (!(h == w.follow_step_)) {
+  // advance() splits a frame into equal sub-steps, so h changes only with the frame's length.
+  // The controllers play at the walk's tempo: their velocities times it, the limbs' inertia over
+  // it; exp() is recomputed only when h or the tempo changes.
+  const double tempo = w.tempo();
+  if (!(h == w.follow_step_) || !(tempo == w.follow_tempo_)) {
     w.follow_step_ = h;
-    w.follow_ = detail::follow_share(h, w.controllers_->inertia);
+    w.follow_tempo_ = tempo;
+    w.follow_ = detail::follow_share(h, w.controllers_->inertia / tempo);
   }
   const double follow = w.follow_;
   const Joints minimum = joints(w.limits_.minimum);
@@ -954,10 +1037,13 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
                                                     d.metrics[static_cast<std::size_t>(leg)]);
       if (own < 1.0) knee_scale = own * knee_scale + (1.0 - own);
     }
-    // The hip's command is a share of the sweep per second, the others degrees per second.
-    const Joints target{JointPair{c[0], c[1] * per_degree} *
-                            JointPair{detail::sweep_scale(l.sweep_start, l.sweep_end), knee_scale},
-                        JointPair{c[2], c[3]} * per_degree};
+    // The hip's command is a share of the sweep per second, the others degrees per second, at
+    // the set's cadence.
+    const double per_degree_now = per_degree * tempo;
+    const Joints target{
+        JointPair{c[0], c[1] * per_degree_now} *
+            JointPair{detail::sweep_scale(l.sweep_start, l.sweep_end) * tempo, knee_scale},
+        JointPair{c[2], c[3]} * per_degree_now};
     Joints velocity = joints(l.velocity);
     Joints angles = joints(l.angles);
     detail::follow_command(target.hip_knee, velocity.hip_knee, angles.hip_knee, follow, h,
@@ -1175,6 +1261,14 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
   }
   w.end_points_valid_ = true;
   w.state_.time += h;
+  // Walking by speed, the speed moves toward the commanded one at the set's acceleration; by step
+  // length it is the step's at the set's cadence at once (the tempo is 1).
+  if (w.by_speed_) {
+    const double most = w.controllers_->acceleration * h;
+    w.state_.speed += std::clamp(w.speed_target_ - w.state_.speed, -most, most);
+  } else {
+    w.state_.speed = w.speed_target_;
+  }
 }
 
 }  // namespace fuzzygait::gait
