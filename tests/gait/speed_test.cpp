@@ -37,7 +37,7 @@ std::string label(double speed, double stature) {
 
 // Bovi et al.'s adults at each of their five speeds, as a 1.75 m adult: the speed within 3 %,
 // the cadence and step within one SD of theirs, the curves as close to that speed's as the set
-// walks them today (thigh 4.2-7.3, knee 6.5-9.8 deg RMSE: docs/walk.md, "Speed"), the feet
+// walks them today (thigh 4.2-7.4, knee 6.6-9.9 deg RMSE: docs/walk.md, "Speed"), the feet
 // planted.
 TEST(Speed, PeoplesFiveSpeedsAtTheirCadenceAndStep) {
   const terrain::Terrain ground = terrain::Terrain::flat();
@@ -68,8 +68,7 @@ TEST(Speed, PeoplesFiveSpeedsAtTheirCadenceAndStep) {
 }
 
 // The contact bounds from the slowest speed to the fastest each stature walks (the speed grid of
-// the issue, 0.6-2.1 m/s, within what the legs take). The fastest walks fall 2-4 % short of the
-// speed asked (their cadence lags the tempo): the bound holds that, not the 3 % wanted.
+// the issue, 0.6-2.1 m/s, within what the legs take), each within 3 % of the speed asked.
 TEST(Speed, FeetStayPlantedAcrossSpeedsAndStatures) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   for (const double stature : {1.50, 1.75, 2.00}) {
@@ -81,7 +80,7 @@ TEST(Speed, FeetStayPlantedAcrossSpeedsAndStatures) {
       const eval::GaitReport r =
           eval::evaluate(eval::record(w, 13.0, 120.0), ground, nullptr, step);
       const std::string at = label(speed, stature);
-      EXPECT_NEAR(r.speed, speed, 0.045 * speed) << at;
+      EXPECT_NEAR(r.speed, speed, 0.03 * speed) << at;
       EXPECT_LT(r.max_slip, 0.001) << at;
       EXPECT_LT(r.max_penetration, 0.001) << at;
       EXPECT_LE(r.step_error_percent.value(), 3.0) << at;
@@ -97,7 +96,9 @@ TEST(Speed, FeetStayPlantedAcrossSpeedsAndStatures) {
 
 // Speeding up from a slow walk to a brisk one and back: the commanded speed moves at the set's
 // acceleration, the steps follow it, the feet stay planted through the change, and no joint's
-// velocity jumps more than in a steady walk at the fastest speed reached.
+// velocity jumps at a phase switch by more than in a steady walk at the fastest speed reached.
+// (That one's jumps are 1.8 times its 99th percentile of changes: the controllers' switches,
+// played faster, are more abrupt; docs/walk.md, "Speed".)
 TEST(Speed, ChangesMidWalkAtTheSetsAcceleration) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   gait::Walker w = walker_at(ground, 0.9, 1.75);
@@ -137,7 +138,7 @@ TEST(Speed, ChangesMidWalkAtTheSetsAcceleration) {
   EXPECT_LT(r.max_penetration, 0.001);
   gait::Walker steady = walker_at(ground, 1.7, 1.75);
   const eval::GaitReport fast = eval::evaluate(eval::record(steady, 13.0, 120.0), ground);
-  EXPECT_LE(r.max_velocity_jump, 1.5 * fast.typical_velocity_change);
+  EXPECT_LE(r.max_velocity_jump, 1.1 * fast.max_velocity_jump);
   std::printf(
       "speed change: slip %.2f mm, velocity jump %.1f deg/s per frame (steady at 1.7 m/s: "
       "jump %.1f, 99th percentile %.1f)\n",

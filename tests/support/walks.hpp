@@ -36,6 +36,8 @@ inline std::string state_difference(const gait::WalkerState& a, const gait::Walk
   };
   if (differ(a.time, b.time)) return "time";
   if (differ(a.speed, b.speed)) return "speed";
+  if (differ(a.tempo_gain, b.tempo_gain)) return "tempo gain";
+  if (differ(a.tempo_gain_target, b.tempo_gain_target)) return "tempo gain target";
   if (differ(a.pelvis.x, b.pelvis.x) || differ(a.pelvis.y, b.pelvis.y)) return "pelvis";
   if (differ(a.pelvis_tilt, b.pelvis_tilt)) return "pelvis tilt";
   if (a.lead != b.lead) return "lead";

@@ -75,6 +75,8 @@ class Crowd {
   // [slot][lane]; room for both legs of a block in either phase.
   std::array<const fuzzy::PackedPartition*, kSlotCount> packed_{};
   std::array<std::array<std::size_t, 2>, kSlotCount> input_of_slot_{};
+  std::array<std::size_t, kMetricCount> read_metrics_{};  // the metrics any slot reads
+  std::size_t read_metric_count_ = 0;
   std::vector<double> metrics_;
   std::vector<double> output_;
   std::vector<std::size_t> output_of_;  // [character][leg]: where its hip's output lies

@@ -73,6 +73,11 @@ struct LegState {
 struct WalkerState {
   double time = 0.0;
   double speed = 0.0;  // m/s: the walk's commanded speed now, moving toward the target
+  // Walking by speed: how much faster than speed / step the controllers play, so that the
+  // cadence makes the speed. Its target is learnt at each strike of a steady walk from the time
+  // the step took; the gain eases toward it.
+  double tempo_gain = 1.0;
+  double tempo_gain_target = 1.0;
   rig::Point pelvis;
   double pelvis_tilt = 0.0;
   std::array<LegState, 2> legs;
@@ -207,6 +212,7 @@ class Walker {
   // The cadence the controllers play at over the set's, cached for the speed it was computed at.
   double tempo_ = 1.0;
   double tempo_speed_ = -1.0;
+  double tempo_gain_ = 0.0;
   double follow_tempo_ = 0.0;  // the tempo of follow_
   double time_step_;
   double follow_step_ = 0.0;  // the h of follow_

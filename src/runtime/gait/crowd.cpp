@@ -60,6 +60,15 @@ Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
       // A one-input controller does not read its second input.
       input_of_slot_[s][1] = static_cast<std::size_t>(c.input(c.input_count() - 1));
     }
+    // The metrics some controller reads: the only ones copied into lanes each step.
+    std::array<bool, kMetricCount> read{};
+    for (const std::array<std::size_t, 2>& inputs : input_of_slot_) {
+      read[inputs[0]] = true;
+      read[inputs[1]] = true;
+    }
+    for (std::size_t m = 0; m < read.size(); ++m) {
+      if (read[m]) read_metrics_[read_metric_count_++] = m;
+    }
   }
   angles_.resize(8 * kBlock);
   sines_.resize(angles_.size());
@@ -122,8 +131,10 @@ void Crowd::command(std::size_t first, std::size_t count) {
       const std::size_t phase = state.legs[leg].phase == Phase::Swing ? 0 : 1;
       const std::size_t k = legs_in[phase]++;
       double* metrics = &metrics_[phase * kMetrics * kLanesPerSlot + k];
-      for (std::size_t m = 0; m < kMetrics; ++m)
+      for (std::size_t r = 0; r < read_metric_count_; ++r) {
+        const std::size_t m = read_metrics_[r];
         metrics[m * kLanesPerSlot] = d.metrics[leg][m];
+      }
       output_of_[2 * i + leg] = 4 * phase * kLanesPerSlot + k;
     }
   }

@@ -43,6 +43,14 @@ using rig::detail::sin_cos;
 constexpr double kGravity = 9.81;
 // A swing foot lands once its leg's delta reaches this (the leg arrives in front of the body).
 constexpr double kLandingDelta = 0.8;
+// Walking by speed, the tempo is learnt from the steps after the first few (the start's steps are
+// not the walk's), within these bounds of speed / step.
+constexpr std::uint32_t kStrikesBeforeTempoLearning = 3;
+constexpr double kLeastTempoGain = 0.8;
+constexpr double kMostTempoGain = 1.25;
+// The time (s) over which the tempo's gain eases toward its target, about a step: a tempo that
+// changed at once would jerk every joint's command at the strike.
+constexpr double kTempoGainEasing = 0.5;
 // Mid-swing, the clearance reflex keeps a swinging foot this far above the ground (m); lifting it
 // well clear is the swing controllers' job.
 constexpr double kSwingClearance = 0.01;
@@ -309,9 +317,10 @@ double Walker::max_speed() const noexcept {
 // over the set's cadence walking by speed.
 double Walker::tempo() {
   if (!by_speed_) return 1.0;
-  if (!(state_.speed == tempo_speed_)) {
+  if (!(state_.speed == tempo_speed_) || !(state_.tempo_gain == tempo_gain_)) {
     tempo_speed_ = state_.speed;
-    tempo_ = state_.speed / step_length() * 60.0 / controllers_->cadence;
+    tempo_gain_ = state_.tempo_gain;
+    tempo_ = state_.speed / step_length() * 60.0 / controllers_->cadence * state_.tempo_gain;
   }
   return tempo_;
 }
@@ -518,6 +527,19 @@ void Walker::strike(int leg, Phase phase, Point contact) {
   l.strike_x = phase == Phase::Ball ? contact.x - segments_.heel - segments_.ball : contact.x;
   l.sweep_start = thigh_of(tilt, l.angles);
   l.sweep_end = stance_target();
+  if (by_speed_ && state_.heel_strikes >= kStrikesBeforeTempoLearning &&
+      state_.speed == speed_target_) {
+    // A steady walk by speed: the step just ended took `took` where the speed asks for `wanted`;
+    // play the controllers that much faster or slower, half-way (the square root) so that one
+    // odd step does not swing the cadence.
+    const double took = state_.time - state_.legs[static_cast<std::size_t>(1 - leg)].strike_time;
+    const double wanted = step_length() / state_.speed;
+    if (took > 0.0 && wanted > 0.0) {
+      const double ratio = std::clamp(took / wanted, 0.8, 1.25);
+      state_.tempo_gain_target =
+          std::clamp(state_.tempo_gain_target * std::sqrt(ratio), kLeastTempoGain, kMostTempoGain);
+    }
+  }
   ++state_.heel_strikes;
   record(static_cast<rig::Side>(leg),
          phase == Phase::Ball ? Event::ForefootStrike : Event::HeelStrike, contact);
@@ -1266,6 +1288,14 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
   if (w.by_speed_) {
     const double most = w.controllers_->acceleration * h;
     w.state_.speed += std::clamp(w.speed_target_ - w.state_.speed, -most, most);
+    WalkerState& s = w.state_;
+    if (!(s.tempo_gain == s.tempo_gain_target)) {
+      const double gap = s.tempo_gain_target - s.tempo_gain;
+      // (snapped to the target within a part in 10^5, so that exp() is not recomputed forever)
+      s.tempo_gain = std::abs(gap) < 1e-5
+                         ? s.tempo_gain_target
+                         : s.tempo_gain + gap * std::min(1.0, h / kTempoGainEasing);
+    }
   } else {
     w.state_.speed = w.speed_target_;
   }
