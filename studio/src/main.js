@@ -254,6 +254,8 @@ function buildSettings() {
   settingsGui = new GUI({ container: $('#settings'), title: 'Walk and set', width: 300 });
   Object.assign(settingsModel, {
     step: s.step,
+    bySpeed: s.speed > 0,
+    walkSpeed: s.speed > 0 ? s.speed : 1.3,
     stature: s.stature,
     terrain: s.terrain,
     cycles: s.cycles,
@@ -268,6 +270,15 @@ function buildSettings() {
   const [low, high] = roundedInward(s.limits.step, 0.005);
   walk.add(settingsModel, 'step', low, high, 0.005).name('step length (m)')
     .onChange((v) => changeSettings({ step: v }));
+  // Walking by speed, the set's stride gives the step and the cadence follows.
+  if (s.limits.speed) {
+    const [slow, fast] = roundedInward(s.limits.speed, 0.01);
+    settingsModel.walkSpeed = Math.min(Math.max(settingsModel.walkSpeed, slow), fast);
+    walk.add(settingsModel, 'bySpeed').name('walk at a speed')
+      .onChange((v) => changeSettings(v ? { speed: settingsModel.walkSpeed } : { step: settingsModel.step }));
+    walk.add(settingsModel, 'walkSpeed', slow, fast, 0.01).name('speed (m/s)')
+      .onChange((v) => { settingsModel.bySpeed = true; changeSettings({ speed: v }); });
+  }
   walk.add(settingsModel, 'stature', ...s.limits.stature, 0.01).name('stature (m)')
     .onChange((v) => changeSettings({ stature: v }));
   const terrains = Object.fromEntries(state.terrains.map((t) => [t.label, t.spec]));
@@ -301,6 +312,8 @@ const PARAMETER_LABELS = {
   pelvis_tilt_deg: 'pelvic tilt (deg)',
   swing_knee_reference_sweep_deg: 'knee reference sweep (deg)',
   shortest_step_leg_lengths: 'shortest step (leg lengths)',
+  cadence_steps_per_min: 'cadence it is written for (steps/min)',
+  acceleration_m_s2: 'acceleration (m/s²)',
 };
 function buildParameters() {
   for (const c of [...parameterGui.controllers]) c.destroy();
@@ -327,9 +340,16 @@ function refreshSettings() {
   const s = studio.state.settings;
   settingsModel.step = s.step;
   settingsModel.stature = s.stature;
+  settingsModel.bySpeed = s.speed > 0;
+  if (s.speed > 0) settingsModel.walkSpeed = s.speed;
   const step = settingsGui.folders[0].controllers[0];
   const [low, high] = roundedInward(s.limits.step, 0.005);
   step.min(low).max(high);
+  const speed = settingsGui.folders[0].controllers.find((c) => c.property === 'walkSpeed');
+  if (speed && s.limits.speed) {
+    const [slow, fast] = roundedInward(s.limits.speed, 0.01);
+    speed.min(slow).max(fast);
+  }
   for (const folder of settingsGui.folders) for (const c of folder.controllers) c.updateDisplay();
 }
 

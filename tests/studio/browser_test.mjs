@@ -228,9 +228,20 @@ try {
   const walked = await studio(() => window.studio.walk.gait.step_length);
   check(commanded === 0.6, `the step length typed is the one commanded (${commanded} m)`);
   check(Math.abs(walked - 0.6) < 0.03, `the walk takes the step length typed (${walked.toFixed(3)} m)`);
+  // ---- a speed typed into the panel: the walk goes at it, and a step walks by step again ----
+  const speed = page.locator('#settings').getByLabel('speed (m/s)', { exact: true });
+  await speed.fill('1.6');
+  await speed.press('Enter');
+  await idle();
+  const asked = await studio(() => window.studio.state.settings.speed);
+  const went = await studio(() => window.studio.walk.gait.speed);
+  check(asked === 1.6, `the speed typed is the one commanded (${asked} m/s)`);
+  check(Math.abs(went - 1.6) < 0.05, `the walk goes at the speed typed (${went.toFixed(3)} m/s)`);
+  await shot('speed.png');
   await step.fill('0.7');
   await step.press('Enter');
   await idle();
+  check((await studio(() => window.studio.state.settings.speed)) === 0, 'a step typed walks by step length again');
 
   // ---- edit-to-redraw latency over 10 cycles: isolated edits, each a small drag ----
   await studio(() => {

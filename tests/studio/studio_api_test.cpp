@@ -129,6 +129,47 @@ TEST(StudioApi, WalkIsTheLibrarysWalkMeasuredTheSameWay) {
   EXPECT_NEAR(frames.at("time").at(3).get<double>(), motion.frames[3 * 4].time, 5e-5);
 }
 
+// Walking at a speed: the walk is the library's walk by that speed, its step error measured
+// against the stride's step; a step walks by step length again; the set's cadence is one of its
+// own numbers.
+TEST(StudioApi, WalksAtASpeedAsTheLibraryDoes) {
+  Studio studio(quick("speed"));
+  const json limits = studio.state().at("settings").at("limits").at("speed");
+  ASSERT_TRUE(limits.is_array());
+  EXPECT_LT(limits.at(0).get<double>(), 0.7);
+  EXPECT_GT(limits.at(1).get<double>(), 2.0);
+  const json answer = studio.change_settings({{"speed", 1.6}});
+  EXPECT_EQ(answer.at("settings").at("speed"), 1.6);
+
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  gait::WalkerOptions o;
+  o.segments = rig::segments_from_stature(1.75);
+  o.speed = 1.6;
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::Walker walker(set, o, flat);
+  const double step = walker.step_length();
+  const eval::Motion motion = eval::record_cycles(walker, 4, 120.0);
+  const eval::Normative reference = io::load_normative("schwartz2008_free");
+  const eval::GaitReport report = eval::evaluate(motion, flat, &reference, step);
+  const json& walk = answer.at("walk");
+  EXPECT_TRUE(walk.at("completed").get<bool>());
+  EXPECT_EQ(walk.at("scores").at("knee").at("rmse").get<double>(), report.knee_score->rmse);
+  EXPECT_NEAR(walk.at("gait").at("speed").get<double>(), 1.6, 0.05);
+
+  const json by_step = studio.change_settings({{"step", 0.7}});
+  EXPECT_EQ(by_step.at("settings").at("speed"), 0.0);
+  EXPECT_NEAR(by_step.at("walk").at("gait").at("step_length").get<double>(), 0.7, 0.021);
+
+  std::vector<std::string> names;
+  const json state = studio.state();
+  for (const json& p : state.at("set").at("parameters"))
+    names.push_back(p.at("name"));
+  EXPECT_THAT(names, ::testing::Contains("cadence_steps_per_min"));
+  studio.edit({{"set", "cadence_steps_per_min"}, {"value", 100}});
+  studio.change_settings({{"speed", 1.2}});
+  EXPECT_EQ(studio.state().at("settings").at("speed"), 1.2);
+}
+
 TEST(StudioApi, MovingAKnotChangesTheControllerAndTheWalkAndUndoRestoresBoth) {
   Studio studio(quick("knot"));
   const json before = studio.walk().at("walk");
@@ -265,6 +306,9 @@ TEST(StudioApi, RefusalsNameTheFieldAndChangeNothing) {
        edit({{"set", "shortest_step_leg_lengths"}, {"value", 1.1}}), 422, "value"},
       {"a step the legs cannot reach", settings({{"step", 3.0}}), 422, "step"},
       {"a step shorter than the set walks", settings({{"step", 0.2}}), 422, "step"},
+      {"a speed faster than the set walks", settings({{"speed", 9.0}}), 422, "speed"},
+      {"a negative speed", settings({{"speed", -1.0}}), 422, "speed"},
+      {"a step and a speed", settings({{"step", 0.7}, {"speed", 1.2}}), 422, "speed"},
       {"a stature out of range", settings({{"stature", 0.5}}), 422, "stature"},
       {"too many cycles", settings({{"cycles", 1000}}), 422, "cycles"},
       {"stairs too steep", settings({{"terrain", "stairs:0.5:0.28:6"}}), 422, "terrain"},

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <utility>
 
@@ -278,29 +278,9 @@ void move_knot(fuzzy::Engine& engine, const std::string& controller, const std::
 }
 
 // The set's own numbers as the manifest spells them, with the manifest reader's ranges.
-struct SetParameter {
-  const char* name;
-  double low;
-  double high;
-  std::function<double(const gait::ControllerSet&)> get;
-  std::function<void(gait::ControllerSet&, double)> set;
-};
-
-const std::vector<SetParameter>& set_parameters() {
-  static const std::vector<SetParameter> parameters = {
-      {"inertia_s", 0.001, 1.0, [](const gait::ControllerSet& s) { return s.inertia; },
-       [](gait::ControllerSet& s, double v) { s.inertia = v; }},
-      {"pelvis_tilt_deg", -45.0, 45.0,
-       [](const gait::ControllerSet& s) { return rig::degrees(s.pelvis_tilt); },
-       [](gait::ControllerSet& s, double v) { s.pelvis_tilt = rig::radians(v); }},
-      {"swing_knee_reference_sweep_deg", 0.0, 180.0,
-       [](const gait::ControllerSet& s) { return rig::degrees(s.swing_knee_reference_sweep); },
-       [](gait::ControllerSet& s, double v) { s.swing_knee_reference_sweep = rig::radians(v); }},
-      {"shortest_step_leg_lengths", 0.1, 1.2,
-       [](const gait::ControllerSet& s) { return s.shortest_step; },
-       [](gait::ControllerSet& s, double v) { s.shortest_step = v; }},
-  };
-  return parameters;
+using SetParameter = gait::ControllerSet::ManifestNumber;
+std::span<const SetParameter> set_parameters() {
+  return gait::ControllerSet::manifest_numbers();
 }
 
 ControllerPlace find_place(const gait::ControllerSet& set, const std::string& id) {
@@ -370,7 +350,7 @@ json controller_json(const gait::ControllerSet& set, const ControllerPlace& plac
 json parameters_json(const gait::ControllerSet& set) {
   json parameters = json::array();
   for (const SetParameter& p : set_parameters()) {
-    parameters.push_back({{"name", p.name}, {"value", p.get(set)}, {"range", {p.low, p.high}}});
+    parameters.push_back({{"name", p.key}, {"value", p.get(set)}, {"range", {p.low, p.high}}});
   }
   return parameters;
 }
@@ -406,16 +386,16 @@ Edited apply_edit(const gait::ControllerSet& set, const json& request) {
   if (const std::optional<std::string> name = optional_string(request, "set")) {
     check_fields(request, {"set", "value", "gesture"});
     for (const SetParameter& p : set_parameters()) {
-      if (*name != p.name) continue;
+      if (*name != p.key) continue;
       edited.before = p.get(set);
       edited.after = number_field(request, "value", p.low, p.high);
       p.set(edited.set, edited.after);
-      edited.subject = p.name;
+      edited.subject = p.key;
       return edited;
     }
     std::string known;
     for (const SetParameter& p : set_parameters())
-      known += (known.empty() ? "" : ", ") + std::string(p.name);
+      known += (known.empty() ? "" : ", ") + std::string(p.key);
     throw RequestError(422, "set", "the set has no parameter '" + *name + "' (" + known + ")");
   }
   const ControllerPlace place = find_place(set, string_field(request, "controller"));

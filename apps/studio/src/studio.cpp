@@ -69,6 +69,18 @@ std::pair<double, double> step_range(const gait::ControllerSet& set, double stat
   return {gait::Walker::min_step_length(set, segments), gait::Walker::max_step_length(segments)};
 }
 
+// The speeds (m/s) these legs walk this set at by speed; none for a set without a stride relation.
+std::optional<std::pair<double, double>> speed_range(const gait::ControllerSet& set,
+                                                     double stature) {
+  if (!set.stride) return std::nullopt;
+  gait::WalkerOptions options;
+  options.segments = rig::segments_from_stature(stature);
+  options.step_length = gait::Walker::min_step_length(set, options.segments);
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  const gait::Walker walker(set, options, flat);
+  return std::pair{walker.min_speed(), walker.max_speed()};
+}
+
 }  // namespace
 
 struct Studio::Session {
@@ -181,13 +193,16 @@ struct Studio::Session {
 
   json settings_json() const {
     const auto [low, high] = step_range(current, settings.stature);
+    const std::optional<std::pair<double, double>> speeds = speed_range(current, settings.stature);
     return {{"step", settings.step},
+            {"speed", settings.speed},
             {"stature", settings.stature},
             {"cycles", settings.cycles},
             {"terrain", settings.terrain},
             {"reference", settings.reference},
             {"limits",
              {{"step", {low, high}},
+              {"speed", speeds ? json{speeds->first, speeds->second} : json(nullptr)},
               {"stature", {Limits::kMinStature, Limits::kMaxStature}},
               {"cycles", {Limits::kMinCycles, Limits::kMaxCycles}}}}};
   }
@@ -262,10 +277,16 @@ struct Studio::Session {
   json opened_json() const { return {{"id", opened.id}, {"label", opened.label}}; }
 
   // A step the set walks: the setting, or the nearest the set takes (a set whose shortest step
-  // is longer than the current one).
+  // is longer than the current one); a speed, the nearest it walks, or by step length for a set
+  // without a stride relation.
   void fit_step() {
     const auto [low, high] = step_range(current, settings.stature);
     settings.step = std::clamp(settings.step, low, high);
+    if (settings.speed > 0.0) {
+      const std::optional<std::pair<double, double>> speeds =
+          speed_range(current, settings.stature);
+      settings.speed = speeds ? std::clamp(settings.speed, speeds->first, speeds->second) : 0.0;
+    }
   }
 };
 
@@ -284,7 +305,7 @@ Studio::Studio(StudioOptions options) : session_(std::make_unique<Session>()) {
   }
   for (const std::string& spec : o.terrains)
     io::terrain_from_spec(spec, "--terrain");
-  s.settings = {o.step, o.stature, o.cycles, "flat", "schwartz2008_free"};
+  s.settings = {o.step, 0.0, o.stature, o.cycles, "flat", "schwartz2008_free"};
   s.reference = io::load_normative(s.settings.reference);
   if (!o.folders.empty()) {
     s.current = gait::ControllerSet::load(o.folders.front());
@@ -368,7 +389,7 @@ json Studio::edit(const json& request) {
 
 json Studio::change_settings(const json& request) {
   Session& s = *session_;
-  detail::check_fields(request, {"step", "stature", "terrain", "cycles", "reference"});
+  detail::check_fields(request, {"step", "speed", "stature", "terrain", "cycles", "reference"});
   detail::WalkSettings next = s.settings;
   next.stature =
       detail::optional_number(request, "stature", Limits::kMinStature, Limits::kMaxStature)
@@ -386,8 +407,32 @@ json Studio::change_settings(const json& request) {
                              number_text(next.stature) + " m; got " + number_text(*step));
     }
     next.step = *step;
+    next.speed = 0.0;  // a step asked for: the walk is by step length
   } else {
     next.step = std::clamp(next.step, low, high);
+  }
+  // A speed above 0 walks by speed (the step the set's stride gives), 0 by step length.
+  const std::optional<double> speed = detail::optional_number(request, "speed", 0.0, 100.0);
+  if (speed && *speed > 0.0 && request.contains("step")) {
+    throw RequestError(422, "speed",
+                       "give a step or a speed, not both: a walk by speed takes the step its "
+                       "set's stride relation gives");
+  }
+  const std::optional<std::pair<double, double>> speeds = speed_range(s.current, next.stature);
+  if (speed) next.speed = *speed;
+  if (next.speed > 0.0) {
+    if (!speeds) {
+      throw RequestError(422, "speed",
+                         "this set has no stride relation (its manifest's 'stride'): walk it by "
+                         "step length");
+    }
+    if (speed && !(*speed >= speeds->first && *speed <= speeds->second)) {
+      throw RequestError(422, "speed",
+                         "speed must be between " + number_text(speeds->first, 3) + " and " +
+                             number_text(speeds->second, 3) + " m/s for this set at stature " +
+                             number_text(next.stature) + " m; got " + number_text(*speed));
+    }
+    next.speed = std::clamp(next.speed, speeds->first, speeds->second);
   }
   std::optional<terrain::Terrain> ground;
   if (const std::optional<std::string> spec = detail::optional_string(request, "terrain")) {

@@ -34,6 +34,7 @@ gait::WalkerOptions walker_options(const WalkSettings& settings) {
   gait::WalkerOptions options;
   options.segments = rig::segments_from_stature(settings.stature);
   options.step_length = settings.step;
+  options.speed = settings.speed;
   return options;
 }
 
@@ -79,8 +80,10 @@ Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
   Walked w;
   const auto start = std::chrono::steady_clock::now();
   const gait::WalkerOptions options = walker_options(settings);
+  double step = settings.step;
   {
     gait::Walker walker(set, options, ground);
+    step = walker.step_length();  // by speed, the stride's at the speed asked
     try {
       w.motion = eval::record_cycles(walker, settings.cycles, kRecordFps);
     } catch (const std::runtime_error& e) {
@@ -95,7 +98,7 @@ Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
 
   const auto measuring = std::chrono::steady_clock::now();
   try {
-    w.report = eval::evaluate(w.motion, ground, &reference, settings.step);
+    w.report = eval::evaluate(w.motion, ground, &reference, step);
   } catch (const std::invalid_argument& e) {
     w.not_measured = e.what();
   }

@@ -15,6 +15,7 @@ namespace fuzzygait::studio::detail {
 
 struct WalkSettings {
   double step = 0.70;
+  double speed = 0.0;  // m/s: above 0, the walk is by speed and its step the set's stride's
   double stature = 1.75;
   int cycles = 10;
   std::string terrain = "flat";  // the spec

@@ -1,8 +1,8 @@
 // The studio's API: what its page reads and changes, as functions over JSON that the HTTP server
 // (server.hpp) calls and a test calls in-process. One Studio is one person's session: the
-// controller set being shaped with its history of edits, the walk's settings (step, stature,
-// terrain, cycles), the sets that may be opened and the set to compare with. docs/studio.md
-// describes every request and answer.
+// controller set being shaped with its history of edits, the walk's settings (step or speed,
+// stature, terrain, cycles), the sets that may be opened and the set to compare with.
+// docs/studio.md describes every request and answer.
 //
 // Every request is a JSON object; every answer is a JSON object. A request that cannot be met
 // throws RequestError naming the field at fault and changes nothing: the set, its history and the
@@ -96,12 +96,13 @@ class Studio {
   //   {"controller": ID, "variable": INPUT, "knot": I, "value": X}      a partition's knot I
   //   {"controller": ID, "variable": OUTPUT, "term": WORD, "value": V}  an output word's value
   //   {"controller": ID, "variable": V, "term": T, "parameter": I, "value": X}  any term parameter
-  //   {"set": "inertia_s" | "pelvis_tilt_deg" | "swing_knee_reference_sweep_deg"
-  //            | "shortest_step_leg_lengths", "value": X}        one of the set's own numbers
+  //   {"set": NAME, "value": X}   one of the set's own numbers, a manifest key of
+  //                                ControllerSet::manifest_numbers() ("inertia_s", ...)
   // and may carry "gesture": ID, so that the edits of one drag are one step of the history.
   nlohmann::json edit(const nlohmann::json& request);
-  // {"step": M, "stature": M, "terrain": SPEC, "cycles": N}, any of them: the new settings and
-  // walk.
+  // {"step": M, "speed": M/S, "stature": M, "terrain": SPEC, "cycles": N}, any of them: the new
+  // settings and walk. A speed above 0 walks by speed (the set's stride gives the step), a step
+  // or a speed of 0 by step length.
   nlohmann::json change_settings(const nlohmann::json& request);
   // Steps back or forward through the history (an open too): the whole set, the set opened, the
   // history, the settings, the walk and the compared walk (which follows the set opened).
