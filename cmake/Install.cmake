@@ -14,8 +14,8 @@ foreach(part IN ITEMS fuzzy rig terrain gait)
   install(DIRECTORY include/fuzzygait/${part} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fuzzygait
           COMPONENT runtime)
 endforeach()
-install(FILES include/fuzzygait/compiler.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fuzzygait
-        COMPONENT runtime)
+install(FILES include/fuzzygait/compiler.hpp include/fuzzygait/fuzzygait.h
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fuzzygait COMPONENT runtime)
 install(EXPORT fuzzygaitRuntimeTargets NAMESPACE fuzzygait:: DESTINATION ${package_dir}
         COMPONENT runtime)
 

@@ -1,6 +1,7 @@
 # Installs the runtime component of the fuzzygait build alone into a scratch prefix, then
 # configures, builds and runs the game-side example against it with
-# find_package(fuzzygait COMPONENTS runtime), as a game would; and checks that neither the
+# find_package(fuzzygait COMPONENTS runtime), as a game would, and the C example (walk_in_c); and
+# checks that neither the
 # installed runtime nor the example links any library but the C++ standard library's. Then the
 # whole package: find_package(fuzzygait COMPONENTS offline) builds a program that records a walk.
 # cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... -P check_example.cmake
@@ -56,6 +57,18 @@ if(NOT run_output MATCHES "left foot planted" OR NOT run_output MATCHES "t= 9")
 endif()
 message(STATUS "the installed runtime builds and runs the example, linking ${linked}:\n"
                "${link_line}\n${run_output}")
+
+# The C example, from the runtime component alone: it walks, speeds up, has a bad request refused
+# with its reason, and walks a crowd.
+run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/walk_in_c" -B "${WORK_DIR}/example_c"
+    -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}")
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/example_c")
+run("${WORK_DIR}/example_c/walk_in_c")
+if(NOT run_output MATCHES "speed 1\\.80 m/s" OR NOT run_output MATCHES "refused: speed must be between"
+   OR NOT run_output MATCHES "character 2 after 5 s")
+  message(FATAL_ERROR "the C example did not walk as it should:\n${run_output}")
+endif()
+message(STATUS "the installed runtime builds and runs the C example:\n${run_output}")
 
 # The offline component: a program that records a walk and measures it.
 run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/all")

@@ -1,0 +1,263 @@
+// The C face (include/fuzzygait/fuzzygait.h) over the C++ runtime: each handle owns its C++
+// object; every exception stops here and becomes an fg_error.
+#include "fuzzygait/fuzzygait.h"
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <new>
+#include <stdexcept>
+#include <vector>
+
+#include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/gait/crowd.hpp"
+#include "fuzzygait/gait/walker.hpp"
+#include "fuzzygait/rig/rig.hpp"
+#include "fuzzygait/terrain/terrain.hpp"
+
+using namespace fuzzygait;
+
+struct fg_set {
+  gait::ControllerSet set;
+};
+struct fg_ground {
+  terrain::Terrain ground;
+};
+struct fg_walker {
+  // Level ground of its own when none is given.
+  std::unique_ptr<terrain::Terrain> own_ground;
+  gait::Walker walker;
+};
+struct fg_crowd {
+  std::unique_ptr<terrain::Terrain> own_ground;
+  gait::Crowd crowd;
+};
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void clear(fg_error* error) {
+  if (!error) return;
+  error->failed = 0;
+  error->message[0] = '\0';
+}
+
+void fail(fg_error* error, const char* message) {
+  if (!error) return;
+  error->failed = 1;
+  const std::size_t n = std::min(std::strlen(message), sizeof error->message - 1);
+  std::memcpy(error->message, message, n);
+  error->message[n] = '\0';
+}
+
+// Runs `make`, turning any exception into `error` and a null result.
+template <class Make>
+auto guarded(fg_error* error, Make make) noexcept -> decltype(make()) {
+  clear(error);
+  try {
+    return make();
+  } catch (const std::bad_alloc&) {
+    fail(error, "out of memory");
+  } catch (const std::exception& e) {
+    fail(error, e.what());
+  } catch (...) {
+    fail(error, "unknown error");
+  }
+  return nullptr;
+}
+
+gait::WalkerOptions options_of(const fg_walker_def& def) {
+  gait::WalkerOptions o;
+  o.segments = {def.thigh, def.shank, def.ankle_height, def.heel, def.ball, def.toe};
+  o.step_length = def.step_length;
+  o.speed = def.speed;
+  o.time_step = def.time_step;
+  o.start.random = def.random_start != 0;
+  o.start.seed = def.start_seed;
+  return o;
+}
+
+fg_pose pose_of(const gait::Walker& w) {
+  const rig::Pose p = w.pose();
+  fg_pose out{};
+  out.pelvis_x = p.pelvis.x;
+  out.pelvis_y = p.pelvis.y;
+  out.pelvis_tilt = p.pelvis_tilt;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const rig::LegAngles& a = p.legs[k];
+    out.legs[k] = {a.hip, a.knee, a.ankle, a.toe};
+  }
+  return out;
+}
+
+rig::Side side_of(int side) {
+  return side == FG_LEFT ? rig::Side::Left : rig::Side::Right;
+}
+
+}  // namespace
+
+extern "C" {
+
+int fg_segments_from_stature(double stature, fg_walker_def* def) {
+  if (!def || !(stature >= 0.5 && stature <= 3.0)) return 0;
+  const rig::Segments s = rig::segments_from_stature(stature);
+  def->thigh = s.thigh;
+  def->shank = s.shank;
+  def->ankle_height = s.ankle_height;
+  def->heel = s.heel;
+  def->ball = s.ball;
+  def->toe = s.toe;
+  return 1;
+}
+
+fg_walker_def fg_walker_def_default(void) {
+  const gait::WalkerOptions o;
+  fg_walker_def def{};
+  fg_segments_from_stature(1.75, &def);
+  def.step_length = o.step_length;
+  def.speed = o.speed;
+  def.time_step = o.time_step;
+  def.random_start = 0;
+  def.start_seed = 0;
+  return def;
+}
+
+fg_set* fg_set_builtin(const char* name, fg_error* error) {
+  return guarded(error, [&]() -> fg_set* {
+    if (!name) throw std::invalid_argument("fg_set_builtin: no name");
+    return new fg_set{gait::ControllerSet::builtin(name)};
+  });
+}
+
+fg_set* fg_set_load(const char* directory, fg_error* error) {
+  return guarded(error, [&]() -> fg_set* {
+    if (!directory) throw std::invalid_argument("fg_set_load: no directory");
+    return new fg_set{gait::ControllerSet::load(directory)};
+  });
+}
+
+void fg_set_free(fg_set* set) {
+  delete set;
+}
+
+fg_ground* fg_ground_flat(fg_error* error) {
+  return guarded(error, [&]() -> fg_ground* { return new fg_ground{terrain::Terrain::flat()}; });
+}
+
+fg_ground* fg_ground_polyline(const double* xy, size_t count, fg_error* error) {
+  return guarded(error, [&]() -> fg_ground* {
+    if (!xy && count > 0) throw std::invalid_argument("fg_ground_polyline: no points");
+    std::vector<rig::Point> points(count);
+    for (std::size_t i = 0; i < count; ++i)
+      points[i] = {xy[2 * i], xy[2 * i + 1]};
+    return new fg_ground{terrain::Terrain::polyline(std::move(points))};
+  });
+}
+
+double fg_ground_height(const fg_ground* ground, double x) {
+  return ground ? ground->ground.height(x) : kNaN;
+}
+
+void fg_ground_free(fg_ground* ground) {
+  delete ground;
+}
+
+fg_walker* fg_walker_new(const fg_set* set, const fg_walker_def* def, const fg_ground* ground,
+                         fg_error* error) {
+  return guarded(error, [&]() -> fg_walker* {
+    if (!set || !def) throw std::invalid_argument("fg_walker_new: no set or no def");
+    std::unique_ptr<terrain::Terrain> own;
+    if (!ground) own = std::make_unique<terrain::Terrain>(terrain::Terrain::flat());
+    const terrain::Terrain& g = ground ? ground->ground : *own;
+    gait::Walker walker(set->set, options_of(*def), g);
+    return new fg_walker{std::move(own), std::move(walker)};
+  });
+}
+
+void fg_walker_free(fg_walker* walker) {
+  delete walker;
+}
+
+int fg_walker_advance(fg_walker* walker, double dt) {
+  return walker && walker->walker.advance(dt) ? 1 : 0;
+}
+
+double fg_walker_set_speed(fg_walker* walker, double metres_per_second) {
+  return walker ? walker->walker.set_speed(metres_per_second) : kNaN;
+}
+
+double fg_walker_set_step_length(fg_walker* walker, double metres) {
+  return walker ? walker->walker.set_step_length(metres) : kNaN;
+}
+
+double fg_walker_speed(const fg_walker* walker) {
+  return walker ? walker->walker.speed() : kNaN;
+}
+
+double fg_walker_step_length(const fg_walker* walker) {
+  return walker ? walker->walker.step_length() : kNaN;
+}
+
+double fg_walker_time(const fg_walker* walker) {
+  return walker ? walker->walker.time() : kNaN;
+}
+
+void fg_walker_pose(const fg_walker* walker, fg_pose* pose) {
+  if (walker && pose) *pose = pose_of(walker->walker);
+}
+
+void fg_walker_points(const fg_walker* walker, int side, fg_leg_points* points) {
+  if (!walker || !points) return;
+  const rig::LegPoints p = walker->walker.points(side_of(side));
+  *points = {{p.hip.x, p.hip.y},   {p.knee.x, p.knee.y}, {p.ankle.x, p.ankle.y},
+             {p.heel.x, p.heel.y}, {p.ball.x, p.ball.y}, {p.tip.x, p.tip.y}};
+}
+
+int fg_walker_in_contact(const fg_walker* walker, int side) {
+  return walker && walker->walker.in_contact(side_of(side)) ? 1 : 0;
+}
+
+fg_crowd* fg_crowd_new(const fg_set* set, const fg_walker_def* defs, size_t count,
+                       const fg_ground* ground, fg_error* error) {
+  return guarded(error, [&]() -> fg_crowd* {
+    if (!set || (!defs && count > 0)) throw std::invalid_argument("fg_crowd_new: no set or defs");
+    std::vector<gait::WalkerOptions> characters;
+    characters.reserve(count);
+    for (std::size_t i = 0; i < count; ++i)
+      characters.push_back(options_of(defs[i]));
+    std::unique_ptr<terrain::Terrain> own;
+    if (!ground) own = std::make_unique<terrain::Terrain>(terrain::Terrain::flat());
+    const terrain::Terrain& g = ground ? ground->ground : *own;
+    gait::Crowd crowd(set->set, g, characters);
+    return new fg_crowd{std::move(own), std::move(crowd)};
+  });
+}
+
+void fg_crowd_free(fg_crowd* crowd) {
+  delete crowd;
+}
+
+size_t fg_crowd_size(const fg_crowd* crowd) {
+  return crowd ? crowd->crowd.size() : 0;
+}
+
+int fg_crowd_advance(fg_crowd* crowd, double dt) {
+  return crowd && crowd->crowd.advance(dt) ? 1 : 0;
+}
+
+void fg_crowd_pose(const fg_crowd* crowd, size_t i, fg_pose* pose) {
+  if (crowd && pose && i < crowd->crowd.size()) *pose = pose_of(crowd->crowd[i]);
+}
+
+double fg_crowd_set_speed(fg_crowd* crowd, size_t i, double metres_per_second) {
+  return crowd ? crowd->crowd.set_speed(i, metres_per_second) : kNaN;
+}
+
+double fg_crowd_set_step_length(fg_crowd* crowd, size_t i, double metres) {
+  return crowd ? crowd->crowd.set_step_length(i, metres) : kNaN;
+}
+
+}  // extern "C"
