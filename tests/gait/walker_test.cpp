@@ -205,6 +205,26 @@ TEST(Walker, AdvancingAllocatesNothing) {
   EXPECT_EQ(fuzzygait::testing::allocation_count(), before);
 }
 
+// Walking by speed and changing it, or going back to a step length, allocates nothing either.
+TEST(Walker, ChangingSpeedAllocatesNothing) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::WalkerOptions o;
+  o.speed = 1.2;
+  gait::Walker w(fuzzygait::test::default_set(), o, ground);
+  w.advance(1.0);
+  const long before = fuzzygait::testing::allocation_count();
+  for (int i = 0; i < 600; ++i) {
+    if (i % 100 == 0) w.set_speed(1.6);
+    if (i % 100 == 50) w.set_speed(0.9);
+    if (i == 333) w.set_step_length(0.7);
+    if (i == 400) w.set_speed(1.2);
+    (void)w.min_speed();
+    w.advance(1.0 / 60.0);
+    w.clear_events();
+  }
+  EXPECT_EQ(fuzzygait::testing::allocation_count(), before);
+}
+
 TEST(Walker, ControllersRunOnTheFastPath) {
   for (const std::string& name : gait::ControllerSet::builtin_names()) {
     for (const gait::Controller& c : gait::ControllerSet::builtin(name).controllers) {
