@@ -151,6 +151,24 @@ TEST(WalkPlots, GaitCurvesOverTheReferenceWithTheReportsScores) {
   keep(figure, "walk_gait_curves.svg");
 }
 
+// A reference whose ankle zero is its own (Bovi et al. 2011) is drawn moved onto the walk's
+// ankle mean, as it is scored, and the figure says so; the other joints are drawn as they are.
+TEST(WalkPlots, AnAnkleOfUnknownZeroIsDrawnOnTheWalksMean) {
+  const eval::Normative bovi = io::load_normative("bovi2011_adult_natural");
+  ASSERT_TRUE(bovi.ankle_offset_unknown);
+  const eval::GaitReport r = eval::evaluate(walk(), Terrain::flat(), &bovi);
+  const std::string text = plot::plot_gait_curves(r, &bovi).svg();
+  EXPECT_EQ(check_xml(text), "");
+  EXPECT_THAT(text, HasSubstr("ankle zero is its own (Bovi et al. 2011)"));
+  const eval::Normative schwartz = io::load_normative("schwartz2008_free");
+  EXPECT_THAT(plot::plot_gait_curves(r, &schwartz).svg(), Not(HasSubstr("ankle zero")));
+  const std::vector<plot::LabelledReport> walks = {{"walk", r}};
+  const std::string ankle =
+      plot::plot_curve_comparison(walks, &bovi, {.joints = {plot::GaitJoint::Ankle}}).svg();
+  EXPECT_EQ(check_xml(ankle), "");
+  EXPECT_THAT(ankle, HasSubstr("ankle zero is its own"));
+}
+
 TEST(WalkPlots, GaitCurvesWithoutReference) {
   eval::GaitReport r = eval::evaluate(walk(), Terrain::flat());
   const std::string text = plot::plot_gait_curves(r, nullptr, {.cycle_sd = false}).svg();

@@ -90,6 +90,30 @@ const eval::Curve* reference_of(const eval::Normative* reference, GaitJoint join
   return nullptr;
 }
 
+// The reference drawn for a joint beside `walk`: an ankle whose zero is the source's own
+// (eval::Normative::ankle_offset_unknown) is moved onto the walk's mean, as it is scored (shape
+// only); `moved` says so. None without a reference curve.
+std::optional<eval::Curve> shown_reference(const eval::Normative* reference, GaitJoint joint,
+                                           const eval::Curve& walk, bool& moved) {
+  const eval::Curve* normative = reference_of(reference, joint);
+  if (!normative) return std::nullopt;
+  eval::Curve shown = *normative;
+  if (joint == GaitJoint::Ankle && reference->ankle_offset_unknown) {
+    double difference = 0.0;
+    for (std::size_t k = 0; k < shown.mean.size(); ++k)
+      difference += walk.mean[k] - shown.mean[k];
+    difference /= static_cast<double>(shown.mean.size());
+    for (double& v : shown.mean)
+      v += difference;
+    moved = true;
+  }
+  return shown;
+}
+
+constexpr const char* kMovedAnkleNote =
+    " The reference's ankle zero is its own (Bovi et al. 2011): its curve is moved onto the walk's "
+    "mean, and the ankle is scored by its shape.";
+
 const std::optional<eval::JointScore>& score_of(const eval::GaitReport& report, GaitJoint joint) {
   static const std::optional<eval::JointScore> kNone;
   switch (joint) {
@@ -512,10 +536,12 @@ svg::Figure plot_gait_curves(const eval::GaitReport& report, const eval::Normati
 
   const Color walk = svg::palette_color(0);
   const double toe_off = report.stance_percent;
+  bool ankle_moved = false;
   for (const GaitJoint joint :
        {GaitJoint::Thigh, GaitJoint::Knee, GaitJoint::Ankle, GaitJoint::Toe}) {
     const eval::Curve& curve = curve_of(report, joint);
-    const eval::Curve* normative = reference_of(reference, joint);
+    const std::optional<eval::Curve> normative =
+        shown_reference(reference, joint, curve, ankle_moved);
     ValueRange range;
     add_curve(range, curve, options.cycle_sd ? 1.0 : 0.0);
     if (normative) add_curve(range, *normative, 2.0);
@@ -564,6 +590,7 @@ svg::Figure plot_gait_curves(const eval::GaitReport& report, const eval::Normati
         " RMSE and Pearson r compare the mean curves; the toe (ball of the foot) has no "
         "reference curve.";
   }
+  if (ankle_moved) note += kMovedAnkleNote;
   figure.note(note);
   return figure;
 }
@@ -595,8 +622,13 @@ svg::Figure plot_curve_comparison(std::span<const LabelledReport> walks,
         walks.size() == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(walks.size() - 1);
     return svg::viridis(0.85 * t);
   };
+  bool ankle_moved = false;
   for (const GaitJoint joint : options.joints) {
-    const eval::Curve* normative = reference_of(reference, joint);
+    // (an ankle of unknown zero moved onto the first walk's mean)
+    const std::optional<eval::Curve> normative =
+        walks.empty()
+            ? std::nullopt
+            : shown_reference(reference, joint, curve_of(walks.front().report, joint), ankle_moved);
     ValueRange range;
     for (const LabelledReport& walk : walks)
       add_curve(range, curve_of(walk.report, joint), 0.0);
@@ -619,9 +651,11 @@ svg::Figure plot_curve_comparison(std::span<const LabelledReport> walks,
     }
   }
   figure.note(
-      "The hip is drawn as the thigh's inclination to the vertical (hip flexion minus pelvic "
-      "tilt), which is what is compared. RMSE and Pearson r compare each walk's mean curve with "
-      "the reference mean; the toe (ball of the foot) has no reference curve.");
+      std::string("The hip is drawn as the thigh's inclination to the vertical (hip flexion minus "
+                  "pelvic tilt), which is what is compared. RMSE and Pearson r compare each walk's "
+                  "mean curve with the reference mean; the toe (ball of the foot) has no reference "
+                  "curve.") +
+      (ankle_moved ? kMovedAnkleNote : ""));
   return figure;
 }
 
