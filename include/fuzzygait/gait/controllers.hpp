@@ -178,6 +178,24 @@ struct ControllerSet {
   // order: another evaluator of the same controllers (a reference implementation to compare with).
   double evaluate(int slot, const MetricValues& metrics,
                   const std::function<double(std::size_t controller)>& controller) const;
+  // What the terrain words make of one ground (the metrics incline and stairs), worked out once:
+  // the words that fire and how much, and what follows from them. Everything else a step asks of
+  // the words reads it, so a walker works it out again only when a leg's ground changes (never
+  // on level ground).
+  struct GroundBlend {
+    const GroundWords* words = nullptr;  // the ground's words; null where the set has none
+    std::array<std::size_t, 2> word{};   // the words that fire, in order of their peaks,
+    std::array<double, 2> degree{};      // and how much
+    std::size_t fired = 0;
+    double ascent = 0.0;                     // ascent_weight()
+    double landing_knee = 0.0;               // landing_knee()
+    std::array<bool, 2> own_at{true, true};  // own_controllers_at(), [LegPhase]
+    std::array<double, kSlotCount> own_degree{1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+  };
+  GroundBlend blend(const MetricValues& metrics) const;
+  // evaluate() with the metrics' blend worked out before.
+  double evaluate(int slot, const MetricValues& metrics, const GroundBlend& blend,
+                  std::vector<fuzzy::Workspace>& workspaces) const;
   // Whether for these metrics every slot of `phase` commands with its own controller alone (no
   // terrain word with a file for one of them fires): then evaluate() is its controller's.
   bool own_controllers_at(LegPhase phase, const MetricValues& metrics) const;

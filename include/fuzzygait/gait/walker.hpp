@@ -230,6 +230,11 @@ class Walker {
   // Each leg's points as the last time step left them: the next one starts from them.
   std::array<rig::LegPoints, 2> end_points_{};
   bool end_points_valid_ = false;
+  // Each leg's terrain-word blend, worked out again only when the leg's ground (its metrics
+  // incline and stairs, bit for bit) changes.
+  std::array<ControllerSet::GroundBlend, 2> blends_{};
+  std::array<std::array<double, 2>, 2> blend_ground_{};
+  bool blends_valid_ = false;
   std::vector<EventRecord> events_;
 };
 

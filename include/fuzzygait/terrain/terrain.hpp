@@ -112,8 +112,9 @@ class Terrain {
     double pitch;  // a tread's pitch (radians); NaN for a longer run
   };
   const std::vector<Run>& runs() const { return runs_; }
-  // Index of the run holding x; x on a riser belongs to the run behind it.
-  std::size_t run_at(double x) const;
+  // Index of the run holding x; x on a riser belongs to the run behind it. (Inline: most ground
+  // is one run, which answers at once.)
+  std::size_t run_at(double x) const { return runs_.size() == 1 ? 0 : search_run(x); }
   // The x nearest x on run r (x itself when the run holds it).
   double point_on_run(double x, std::size_t r) const {
     return std::clamp(x, runs_[r].begin, runs_[r].end);
@@ -144,14 +145,20 @@ class Terrain {
   Foothold foothold(double from_x, double wanted_x, double foot_length, double margin,
                     double shortest = 0.0) const;
 
-  // The ground's corners (points) strictly between x0 and x1.
-  std::span<const Point> corners_between(double x0, double x1) const;
+  // The ground's corners (points) strictly between x0 and x1. (Inline: one straight segment
+  // has none between its ends, which answers at once.)
+  std::span<const Point> corners_between(double x0, double x1) const {
+    if (points_.size() == 2 && x0 >= points_[0].x && !(x1 > points_[1].x)) return {};
+    return search_corners(x0, x1);
+  }
 
  private:
   explicit Terrain(std::vector<Point> points);
   // Index of the segment under x; inline for one-segment ground (a single slope).
   std::size_t segment(double x) const { return points_.size() == 2 ? 0 : search_segment(x); }
   std::size_t search_segment(double x) const;
+  std::size_t search_run(double x) const;
+  std::span<const Point> search_corners(double x0, double x1) const;
   std::vector<Point> points_;
   std::vector<double> slopes_;  // of each segment, radians
   std::vector<Run> runs_;

@@ -301,23 +301,54 @@ const Controller& ControllerSet::controller(int slot, Ground kind, std::size_t w
   return v < 0 ? controllers[s] : terrain_controllers[static_cast<std::size_t>(v)];
 }
 
-double ControllerSet::evaluate(int slot, const MetricValues& metrics,
+ControllerSet::GroundBlend ControllerSet::blend(const MetricValues& metrics) const {
+  GroundBlend b;
+  bool words = false;
+  words = fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double degree) {
+    b.words = &g;
+    b.word[b.fired] = word;
+    b.degree[b.fired] = degree;
+    ++b.fired;
+  });
+  if (!words) return b;
+  // Summed in the words' order, as evaluate() sums their commands.
+  b.own_degree.fill(0.0);
+  for (std::size_t i = 0; i < b.fired; ++i) {
+    const GroundWords& g = *b.words;
+    const std::size_t word = b.word[i];
+    const double degree = b.degree[i];
+    if (g.ascent[word]) b.ascent += degree;
+    b.landing_knee += degree * g.landing_knee[word];
+    for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
+      const bool own = g.of_slot[s][word] < 0;
+      if (own) b.own_degree[s] += degree;
+      b.own_at[s / 4] = b.own_at[s / 4] && own;
+    }
+  }
+  return b;
+}
+
+double ControllerSet::evaluate(int slot, const MetricValues& metrics, const GroundBlend& blend,
                                std::vector<fuzzy::Workspace>& workspaces) const {
   const auto s = static_cast<std::size_t>(slot);
   double sum = 0.0;
   double weights = 0.0;
-  const bool words =
-      fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double degree) {
-        const int v = g.of_slot[s][word];
-        const double command =
-            v < 0 ? controllers[s].evaluate(metrics, workspaces[s])
-                  : terrain_controllers[static_cast<std::size_t>(v)].evaluate(
-                        metrics, workspaces[controllers.size() + static_cast<std::size_t>(v)]);
-        sum += degree * command;
-        weights += degree;
-      });
-  if (!words || !(weights > 0.0)) return controllers[s].evaluate(metrics, workspaces[s]);
+  for (std::size_t i = 0; i < blend.fired; ++i) {
+    const int v = blend.words->of_slot[s][blend.word[i]];
+    const double command =
+        v < 0 ? controllers[s].evaluate(metrics, workspaces[s])
+              : terrain_controllers[static_cast<std::size_t>(v)].evaluate(
+                    metrics, workspaces[controllers.size() + static_cast<std::size_t>(v)]);
+    sum += blend.degree[i] * command;
+    weights += blend.degree[i];
+  }
+  if (!(weights > 0.0)) return controllers[s].evaluate(metrics, workspaces[s]);
   return sum / weights;
+}
+
+double ControllerSet::evaluate(int slot, const MetricValues& metrics,
+                               std::vector<fuzzy::Workspace>& workspaces) const {
+  return evaluate(slot, metrics, blend(metrics), workspaces);
 }
 
 double ControllerSet::evaluate(int slot, const MetricValues& metrics,
@@ -336,39 +367,19 @@ double ControllerSet::evaluate(int slot, const MetricValues& metrics,
 }
 
 bool ControllerSet::own_controllers_at(LegPhase phase, const MetricValues& metrics) const {
-  bool own = true;
-  fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double) {
-    for (int j = 0; j < 4; ++j) {
-      own =
-          own && g.of_slot[static_cast<std::size_t>(slot(phase, static_cast<Joint>(j)))][word] < 0;
-    }
-  });
-  return own;
+  return blend(metrics).own_at[static_cast<std::size_t>(phase)];
 }
 
 double ControllerSet::own_degree(int slot, const MetricValues& metrics) const {
-  double own = 0.0;
-  const bool words =
-      fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double degree) {
-        if (g.of_slot[static_cast<std::size_t>(slot)][word] < 0) own += degree;
-      });
-  return words ? own : 1.0;
+  return blend(metrics).own_degree[static_cast<std::size_t>(slot)];
 }
 
 double ControllerSet::ascent_weight(const MetricValues& metrics) const {
-  double weight = 0.0;
-  fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double degree) {
-    if (g.ascent[word]) weight += degree;
-  });
-  return weight;
+  return blend(metrics).ascent;
 }
 
 double ControllerSet::landing_knee(const MetricValues& metrics) const {
-  double knee = 0.0;
-  fire_words(*this, metrics, [&](const GroundWords& g, std::size_t word, double degree) {
-    knee += degree * g.landing_knee[word];
-  });
-  return knee;
+  return blend(metrics).landing_knee;
 }
 
 std::string_view slot_name(int slot) {

@@ -879,10 +879,11 @@ void WalkerStages::command_on_terrain(Walker& w, StepData& d) {
     const LegPhase phase =
         w.state_.legs[leg].phase == Phase::Swing ? LegPhase::Swing : LegPhase::Stance;
     const MetricValues& m = d.metrics[leg];
-    if (set.own_controllers_at(phase, m)) continue;
+    const ControllerSet::GroundBlend& blend = w.blends_[leg];
+    if (blend.own_at[static_cast<std::size_t>(phase)]) continue;
     for (std::size_t joint = 0; joint < 4; ++joint) {
       d.commands[leg][joint] =
-          set.evaluate(slot(phase, static_cast<Joint>(joint)), m, w.workspaces_);
+          set.evaluate(slot(phase, static_cast<Joint>(joint)), m, blend, w.workspaces_);
     }
   }
 }
@@ -931,7 +932,9 @@ void WalkerStages::measure(Walker& w, StepData& d) {
     }
   }
   std::array<MetricValues, 2>& metrics = d.metrics;
-  const std::array<LegGround, 2> ground = leg_ground(w);
+  // Level ground: every foothold's pitch is 0, and no foot is on a tread.
+  const std::array<LegGround, 2> ground =
+      w.terrain_->level() ? std::array<LegGround, 2>{} : leg_ground(w);
   const ControllerSet& set = *w.controllers_;
   const double pace = w.state_.speed / w.speed_unit_;
   for (int leg = 0; leg < 2; ++leg) {
@@ -939,9 +942,16 @@ void WalkerStages::measure(Walker& w, StepData& d) {
     metrics[k][static_cast<std::size_t>(Metric::Incline)] = ground[k].incline;
     metrics[k][static_cast<std::size_t>(Metric::Stairs)] = ground[k].stairs;
     metrics[k][static_cast<std::size_t>(Metric::Pace)] = pace;
-    update_metrics(w, leg, w.end_points_[k], set.ascent_weight(metrics[k]),
-                   set.landing_knee(metrics[k]), metrics[k]);
+    std::array<double, 2>& blended = w.blend_ground_[k];
+    if (!w.blends_valid_ || !same_bits(ground[k].incline, blended[0]) ||
+        !same_bits(ground[k].stairs, blended[1])) {
+      w.blends_[k] = set.blend(metrics[k]);
+      blended = {ground[k].incline, ground[k].stairs};
+    }
+    update_metrics(w, leg, w.end_points_[k], w.blends_[k].ascent, w.blends_[k].landing_knee,
+                   metrics[k]);
   }
+  w.blends_valid_ = true;
   const auto other_delta = static_cast<std::size_t>(Metric::OtherDelta);
   const auto delta = static_cast<std::size_t>(Metric::Delta);
   metrics[0][other_delta] = metrics[1][delta];
@@ -1055,8 +1065,9 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
                             ? detail::swing_knee_scale(l.sweep_start, l.sweep_end, reference)
                             : 1.0;
     if (l.phase == Phase::Swing && w.controllers_->has_terrain_words()) {
-      const double own = w.controllers_->own_degree(slot(LegPhase::Swing, Joint::Knee),
-                                                    d.metrics[static_cast<std::size_t>(leg)]);
+      const double own =
+          w.blends_[static_cast<std::size_t>(leg)]
+              .own_degree[static_cast<std::size_t>(slot(LegPhase::Swing, Joint::Knee))];
       if (own < 1.0) knee_scale = own * knee_scale + (1.0 - own);
     }
     // The hip's command is a share of the sweep per second, the others degrees per second, at

@@ -56,7 +56,7 @@ double Terrain::pitch(double x) const {
   return std::isnan(tread) ? slope(x) : tread;
 }
 
-std::size_t Terrain::run_at(double x) const {
+std::size_t Terrain::search_run(double x) const {
   const auto after = std::upper_bound(runs_.begin(), runs_.end(), x,
                                       [](double v, const Run& r) { return v < r.begin; });
   return after == runs_.begin() ? 0 : static_cast<std::size_t>(after - runs_.begin()) - 1;
@@ -317,7 +317,7 @@ double Terrain::ahead_along_ground(double from_x, double distance) const {
   return near;
 }
 
-std::span<const Point> Terrain::corners_between(double x0, double x1) const {
+std::span<const Point> Terrain::search_corners(double x0, double x1) const {
   const auto first = std::upper_bound(points_.begin(), points_.end(), x0,
                                       [](double v, const Point& p) { return v < p.x; });
   const auto last =
