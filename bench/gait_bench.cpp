@@ -8,6 +8,7 @@
 // lone walker's.
 #include <fl/Headers.h>
 
+#include <malloc.h>
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -18,6 +19,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -380,26 +382,17 @@ std::pair<double, double> run_crowd_benchmark(const gait::ControllerSet& set,
   return {a, b};
 }
 
-void run_gait_benchmark(const Options& o) {
-  const gait::ControllerSet set = o.controllers.empty() ? gait::ControllerSet::builtin(o.style)
-                                                        : gait::ControllerSet::load(o.controllers);
-  const terrain::Terrain ground = terrain::Terrain::flat();
+// Median ns a step of a lone default walker, through the set's controllers and through
+// fuzzylite's (timed alternately, each on a fresh walker after its warm-up), printing each run
+// when asked.
+std::pair<double, double> lone_walker_ns(const gait::ControllerSet& set,
+                                         const gait::detail::ControllerBackend& fuzzylite,
+                                         const terrain::Terrain& ground, const Options& o,
+                                         bool print_runs) {
   const gait::WalkerOptions options;
-  FuzzyliteControllers fuzzylite(set);
-  const gait::detail::ControllerBackend fuzzylite_backend{
-      [&fuzzylite](int slot, const gait::MetricValues& m) { return fuzzylite.evaluate(slot, m); }};
   const Side own{options};
-  const Side through_fuzzylite{options, &fuzzylite_backend};
-
+  const Side through_fuzzylite{options, &fuzzylite};
   const double steps_in_frame = steps_per_frame(options);
-  std::printf(
-      "fuzzygait-bench gait: controller set '%s', flat ground, time step %.6g s, frames of "
-      "1/60 s (%g steps); one thread; median of %d repetitions of >= %.2f s per side, each on a "
-      "fresh walker after %.1f s of walking; fuzzylite %s\n",
-      set.name.c_str(), options.time_step, steps_in_frame, o.repetitions, o.min_seconds, o.warm_up,
-      fl::fuzzylite::version().c_str());
-  check_motion(set, options, ground, o);
-
   const long fuzzygait_frames = frames_for(set, own, ground, o);
   const long fuzzylite_frames = frames_for(set, through_fuzzylite, ground, o);
   std::vector<double> fuzzygait_ns;
@@ -413,6 +406,7 @@ void run_gait_benchmark(const Options& o) {
     run_alternating(
         r, [&] { time_side(own, fuzzygait_frames, fuzzygait_ns); },
         [&] { time_side(through_fuzzylite, fuzzylite_frames, fuzzylite_ns); });
+    if (!print_runs) continue;
     std::printf(
         "run %d: fuzzygait %8.1f ns per step (%ld steps), fuzzylite %8.1f ns per step "
         "(%ld steps)\n",
@@ -422,8 +416,28 @@ void run_gait_benchmark(const Options& o) {
         static_cast<long>(static_cast<double>(fuzzylite_frames) * steps_in_frame));
     std::fflush(stdout);
   }
-  const double ours = median(fuzzygait_ns);
-  const double theirs = median(fuzzylite_ns);
+  return {median(fuzzygait_ns), median(fuzzylite_ns)};
+}
+
+void run_gait_benchmark(const Options& o) {
+  const gait::ControllerSet set = o.controllers.empty() ? gait::ControllerSet::builtin(o.style)
+                                                        : gait::ControllerSet::load(o.controllers);
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  const gait::WalkerOptions options;
+  FuzzyliteControllers fuzzylite(set);
+  const gait::detail::ControllerBackend fuzzylite_backend{
+      [&fuzzylite](int slot, const gait::MetricValues& m) { return fuzzylite.evaluate(slot, m); }};
+
+  const double steps_in_frame = steps_per_frame(options);
+  std::printf(
+      "fuzzygait-bench gait: controller set '%s', flat ground, time step %.6g s, frames of "
+      "1/60 s (%g steps); one thread; median of %d repetitions of >= %.2f s per side, each on a "
+      "fresh walker after %.1f s of walking; fuzzylite %s\n",
+      set.name.c_str(), options.time_step, steps_in_frame, o.repetitions, o.min_seconds, o.warm_up,
+      fl::fuzzylite::version().c_str());
+  check_motion(set, options, ground, o);
+
+  const auto [ours, theirs] = lone_walker_ns(set, fuzzylite_backend, ground, o, true);
   for (const auto& [label, ns] : {std::pair{"fuzzygait", ours}, std::pair{"fuzzylite", theirs}}) {
     std::printf("%-10s %8.1f ns per step, %6.3f M steps per second, real-time factor %.0f\n", label,
                 ns, 1e3 / ns, options.time_step * 1e9 / ns);
@@ -440,7 +454,111 @@ void run_gait_benchmark(const Options& o) {
   std::printf("speedup vs fuzzylite: %.2f\n", headline_fuzzylite / headline);
 }
 
+// `fuzzygait-bench crowd`'s options.
+struct CrowdOptions {
+  std::vector<long> sizes{100, 1000, 10000, 100000, 1000000};
+  std::vector<std::size_t> threads{1, 2};  // and the machine's hardware threads
+  double min_seconds = 0.5;
+  int repetitions = 3;
+  double spread = 1.1;  // characters' warm-ups spread over this many seconds (a gait cycle)
+};
+
+// Bytes the allocator has handed out and not had back (glibc's mallinfo2).
+std::size_t heap_in_use() {
+  const struct mallinfo2 m = mallinfo2();
+  return m.uordblks + m.hblkhd;
+}
+
+void run_crowd_sizes(const CrowdOptions& c) {
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  const gait::WalkerOptions options;
+  const double steps_in_frame = steps_per_frame(options);
+  std::vector<std::size_t> thread_counts = c.threads;
+  const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  if (std::find(thread_counts.begin(), thread_counts.end(), cores) == thread_counts.end()) {
+    thread_counts.push_back(cores);
+  }
+  std::printf(
+      "fuzzygait-bench crowd: the default set, flat ground, time step %.6g s, frames of 1/60 s "
+      "(%g steps); characters' phases spread over %.2f s; %zu hardware threads; median of %d "
+      "repetitions of >= %.2f s; fuzzylite %s\n",
+      options.time_step, steps_in_frame, c.spread, static_cast<std::size_t>(cores), c.repetitions,
+      c.min_seconds, fl::fuzzylite::version().c_str());
+  FuzzyliteControllers fuzzylite(set);
+  const gait::detail::ControllerBackend fuzzylite_backend{
+      [&fuzzylite](int slot, const gait::MetricValues& m) { return fuzzylite.evaluate(slot, m); }};
+  Options lone;
+  lone.min_seconds = c.min_seconds;
+  lone.repetitions = c.repetitions;
+  const auto [lone_ns, fuzzylite_ns] = lone_walker_ns(set, fuzzylite_backend, ground, lone, false);
+  std::printf("lone walker: fuzzygait %.1f ns per step, fuzzylite in the loop %.1f ns (%.2fx)\n",
+              lone_ns, fuzzylite_ns, fuzzylite_ns / lone_ns);
+  std::printf("%10s %8s %10s %12s %10s %9s %10s %14s\n", "characters", "threads", "bytes/char",
+              "ns/char-step", "M steps/s", "vs lone", "vs fzlite", "chars at 60 Hz");
+  std::fflush(stdout);
+  double best_all_cores = 0.0;  // character-steps a second
+  for (const long size : c.sizes) {
+    std::vector<gait::WalkerOptions> characters(static_cast<std::size_t>(size), options);
+    for (std::size_t i = 0; i < characters.size(); ++i) {
+      const double golden = 0.6180339887498949 * static_cast<double>(i);
+      characters[i].start.warm_up = c.spread * (golden - std::floor(golden));
+    }
+    for (const std::size_t threads : thread_counts) {
+      gait::CrowdOptions crowd_options;
+      crowd_options.threads = threads;
+      const std::size_t before = heap_in_use();
+      gait::Crowd crowd(set, ground, characters, crowd_options);
+      const double bytes = static_cast<double>(heap_in_use() - before) / static_cast<double>(size);
+      const long frames =
+          calibrate(1, c.min_seconds, [&](long n) { return seconds_for(crowd, n); });
+      std::vector<double> ns;
+      for (int r = 0; r < c.repetitions; ++r) {
+        ns.push_back(1e9 * seconds_for(crowd, frames) /
+                     (static_cast<double>(frames) * steps_in_frame * static_cast<double>(size)));
+      }
+      const double a = median(ns);
+      const double per_second = 1e9 / a;
+      if (crowd.worker_count() == cores || threads == cores) {
+        best_all_cores = std::max(best_all_cores, per_second);
+      }
+      std::printf("%10ld %8zu %10.0f %12.1f %10.3f %8.2fx %9.2fx %14.0f\n", size,
+                  crowd.worker_count(), bytes, a, per_second / 1e6, lone_ns / a, fuzzylite_ns / a,
+                  per_second / (steps_in_frame * 60.0));
+      std::fflush(stdout);
+    }
+  }
+  std::printf("characters at 60 Hz on all cores: %.0f\n", best_all_cores / (steps_in_frame * 60.0));
+}
+
 }  // namespace
+
+void add_crowd_command(CLI::App& app) {
+  auto options = std::make_shared<CrowdOptions>();
+  CLI::App* crowd = app.add_subcommand(
+      "crowd",
+      "Crowds of 100 to 1,000,000 characters on 1, 2 and all threads: memory and character-steps "
+      "per second, against a lone walker and fuzzylite");
+  crowd->add_option("--sizes", options->sizes, "Crowd sizes (comma-separated)")
+      ->delimiter(',')
+      ->check(CLI::Range(1L, 10000000L))
+      ->capture_default_str();
+  crowd
+      ->add_option("--threads", options->threads,
+                   "Thread counts, comma-separated (the machine's hardware threads are always "
+                   "added)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  add_timing_options(*crowd, options->min_seconds, options->repetitions,
+                     "Wall seconds each crowd walks per repetition, at least");
+  crowd
+      ->add_option("--spread", options->spread,
+                   "Seconds the characters' warm-ups are spread over (their phases)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  crowd->callback([options]() { run_crowd_sizes(*options); });
+}
 
 void add_gait_command(CLI::App& app) {
   auto options = std::make_shared<Options>();

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   fuzzygait::bench::add_fuzzy_command(app);
   fuzzygait::bench::add_gait_command(app);
+  fuzzygait::bench::add_crowd_command(app);
   fuzzygait::bench::add_terrain_command(app);
   try {
     app.parse(argc, argv);

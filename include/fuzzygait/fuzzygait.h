@@ -91,9 +91,36 @@ void fg_walker_pose(const fg_walker* walker, fg_pose* pose);
 void fg_walker_points(const fg_walker* walker, int side, fg_leg_points* points);
 int fg_walker_in_contact(const fg_walker* walker, int side);
 
-/* `count` characters, each as fg_walker_new() would make it (their time steps equal). */
+/* A game's task system, as Box2D v3 takes one (C++: gait::TaskSystem, whose contract holds):
+ * enqueue() runs task over [0, item_count) in ranges of at least min_range items, on workers
+ * numbered below worker_count, no two running ranges sharing a worker number, all done when
+ * finish() (given what enqueue() returned) returns. */
+typedef void fg_task(size_t begin, size_t end, size_t worker, void* task_context);
+typedef struct fg_task_system {
+  size_t worker_count;
+  void* (*enqueue)(fg_task* task, size_t item_count, size_t min_range, void* task_context,
+                   void* user_context);
+  void (*finish)(void* user_task, void* user_context);
+  void* user_context;
+} fg_task_system;
+
+/* How a crowd uses the cores. fg_crowd_def_default(): one thread (the caller's), no task system.
+ */
+typedef struct fg_crowd_def {
+  size_t threads;       /* the crowd's own pool: 1 the calling thread alone, 0 one a core */
+  fg_task_system tasks; /* enqueue set: the game's task system, threads ignored */
+} fg_crowd_def;
+fg_crowd_def fg_crowd_def_default(void);
+
+/* `count` characters, each as fg_walker_new() would make it (their time steps equal), stepped on
+ * the calling thread; fg_crowd_new_with() on the cores `crowd_def` says (NULL: the default). */
 fg_crowd* fg_crowd_new(const fg_set* set, const fg_walker_def* defs, size_t count,
                        const fg_ground* ground, fg_error* error);
+fg_crowd* fg_crowd_new_with(const fg_set* set, const fg_walker_def* defs, size_t count,
+                            const fg_ground* ground, const fg_crowd_def* crowd_def,
+                            fg_error* error);
+/* How many workers step the crowd's characters. */
+size_t fg_crowd_workers(const fg_crowd* crowd);
 void fg_crowd_free(fg_crowd* crowd);
 size_t fg_crowd_size(const fg_crowd* crowd);
 int fg_crowd_advance(fg_crowd* crowd, double dt);

@@ -220,10 +220,34 @@ int fg_walker_in_contact(const fg_walker* walker, int side) {
   return walker && walker->walker.in_contact(side_of(side)) ? 1 : 0;
 }
 
+fg_crowd_def fg_crowd_def_default(void) {
+  fg_crowd_def def{};
+  def.threads = 1;
+  return def;
+}
+
 fg_crowd* fg_crowd_new(const fg_set* set, const fg_walker_def* defs, size_t count,
                        const fg_ground* ground, fg_error* error) {
+  return fg_crowd_new_with(set, defs, count, ground, nullptr, error);
+}
+
+fg_crowd* fg_crowd_new_with(const fg_set* set, const fg_walker_def* defs, size_t count,
+                            const fg_ground* ground, const fg_crowd_def* crowd_def,
+                            fg_error* error) {
   return guarded(error, [&]() -> fg_crowd* {
     if (!set || (!defs && count > 0)) throw std::invalid_argument("fg_crowd_new: no set or defs");
+    gait::CrowdOptions crowd_options;
+    if (crowd_def) {
+      crowd_options.threads = crowd_def->threads;
+      if (const fg_task_system& t = crowd_def->tasks; t.enqueue) {
+        gait::TaskSystem tasks;
+        tasks.worker_count = t.worker_count;
+        tasks.enqueue = t.enqueue;
+        tasks.finish = t.finish;
+        tasks.user_context = t.user_context;
+        crowd_options.tasks = tasks;
+      }
+    }
     std::vector<gait::WalkerOptions> characters;
     characters.reserve(count);
     for (std::size_t i = 0; i < count; ++i)
@@ -231,9 +255,13 @@ fg_crowd* fg_crowd_new(const fg_set* set, const fg_walker_def* defs, size_t coun
     std::unique_ptr<terrain::Terrain> own;
     if (!ground) own = std::make_unique<terrain::Terrain>(terrain::Terrain::flat());
     const terrain::Terrain& g = ground ? ground->ground : *own;
-    gait::Crowd crowd(set->set, g, characters);
+    gait::Crowd crowd(set->set, g, characters, crowd_options);
     return new fg_crowd{std::move(own), std::move(crowd)};
   });
+}
+
+size_t fg_crowd_workers(const fg_crowd* crowd) {
+  return crowd ? crowd->crowd.worker_count() : 0;
 }
 
 void fg_crowd_free(fg_crowd* crowd) {

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -93,6 +94,7 @@ TEST(CApi, ACrowdWalksAsTheCppCrowdOnAGroundOfItsOwn) {
   fg_crowd* crowd = fg_crowd_new(set, defs.data(), defs.size(), ground, &error);
   ASSERT_NE(crowd, nullptr) << error.message;
   EXPECT_EQ(fg_crowd_size(crowd), 3u);
+  EXPECT_EQ(fg_crowd_workers(crowd), 1u);
 
   const gait::ControllerSet heavy = gait::ControllerSet::builtin("heavy");
   const terrain::Terrain ramp = terrain::Terrain::polyline({{-10, 0}, {1, 0}, {6, 0.5}, {20, 0.5}});
@@ -117,6 +119,64 @@ TEST(CApi, ACrowdWalksAsTheCppCrowdOnAGroundOfItsOwn) {
   EXPECT_EQ(untouched.pelvis_x, 42.0);
   fg_crowd_free(crowd);
   fg_ground_free(ground);
+  fg_set_free(set);
+}
+
+// On the crowd's own threads and on a game's task system (here one that runs every range on the
+// calling thread, counting them), 70 characters walk as the C++ crowd on one thread.
+TEST(CApi, ACrowdOnThreadsOrTheGamesTasksWalksAsOnOne) {
+  fg_error error;
+  fg_set* set = fg_set_builtin("default", &error);
+  ASSERT_NE(set, nullptr) << error.message;
+  std::vector<fg_walker_def> defs(70, fg_walker_def_default());
+  std::vector<gait::WalkerOptions> options(70);
+  for (std::size_t i = 0; i < defs.size(); ++i) {
+    defs[i].step_length = options[i].step_length = 0.5 + 0.005 * static_cast<double>(i);
+  }
+  struct Counted {
+    std::size_t ranges = 0;
+  } counted;
+  fg_crowd_def on_game = fg_crowd_def_default();
+  on_game.tasks.worker_count = 1;
+  on_game.tasks.user_context = &counted;
+  on_game.tasks.enqueue = [](fg_task* task, size_t items, size_t min_range, void* task_context,
+                             void* user_context) -> void* {
+    for (size_t begin = 0; begin < items; begin += min_range) {
+      task(begin, std::min(items, begin + min_range), 0, task_context);
+      ++static_cast<Counted*>(user_context)->ranges;
+    }
+    return nullptr;
+  };
+  on_game.tasks.finish = [](void*, void*) {};
+  fg_crowd_def on_two = fg_crowd_def_default();
+  on_two.threads = 2;
+  fg_crowd* crowds[] = {
+      fg_crowd_new_with(set, defs.data(), defs.size(), nullptr, &on_two, &error),
+      fg_crowd_new_with(set, defs.data(), defs.size(), nullptr, &on_game, &error)};
+  ASSERT_NE(crowds[0], nullptr) << error.message;
+  ASSERT_NE(crowds[1], nullptr) << error.message;
+  EXPECT_EQ(fg_crowd_workers(crowds[0]), 2u);
+  const gait::ControllerSet cpp_set = gait::ControllerSet::builtin("default");
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::Crowd cpp(cpp_set, flat, options);
+  for (int frame = 0; frame < 120; ++frame) {
+    cpp.advance(1.0 / 60.0);
+    for (fg_crowd* crowd : crowds)
+      ASSERT_EQ(fg_crowd_advance(crowd, 1.0 / 60.0), 1);
+  }
+  EXPECT_EQ(counted.ranges, 120u * 3u);  // three blocks a frame
+  for (fg_crowd* crowd : crowds) {
+    for (std::size_t i = 0; i < defs.size(); ++i) {
+      fg_pose pose;
+      fg_crowd_pose(crowd, i, &pose);
+      expect_pose(pose, cpp[i].pose());
+    }
+    fg_crowd_free(crowd);
+  }
+  fg_crowd_def broken = fg_crowd_def_default();
+  broken.tasks.enqueue = on_game.tasks.enqueue;  // no finish
+  EXPECT_EQ(fg_crowd_new_with(set, defs.data(), defs.size(), nullptr, &broken, &error), nullptr);
+  EXPECT_THAT(error.message, HasSubstr("task system needs enqueue, finish"));
   fg_set_free(set);
 }
 

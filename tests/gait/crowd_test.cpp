@@ -4,10 +4,17 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
+#include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "fuzzygait/gait/crowd.hpp"
@@ -44,8 +51,15 @@ void expect_same_walk(const gait::Walker& crowd, const gait::Walker& alone,
 // Forty characters (more than a block, so two blocks, the second partly filled): statures from
 // 1.50 to 2.00 m, steps across each one's range, phases spread by their warm-ups, every fifth
 // from a random awkward pose.
-std::vector<gait::WalkerOptions> mixed_characters(const gait::ControllerSet& set) {
-  std::vector<gait::WalkerOptions> characters(40);
+gait::CrowdOptions on_threads(std::size_t threads) {
+  gait::CrowdOptions options;
+  options.threads = threads;
+  return options;
+}
+
+std::vector<gait::WalkerOptions> mixed_characters(const gait::ControllerSet& set,
+                                                  std::size_t count = 40) {
+  std::vector<gait::WalkerOptions> characters(count);
   for (std::size_t i = 0; i < characters.size(); ++i) {
     gait::WalkerOptions& o = characters[i];
     const double a = std::fmod(0.6180339887 * static_cast<double>(i), 1.0);
@@ -128,14 +142,142 @@ TEST(Crowd, CharactersWithAControllerBackEndWalkAsAlone) {
 TEST(Crowd, AdvancingAllocatesNothing) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   const gait::ControllerSet set = gait::ControllerSet::builtin("default");
-  gait::Crowd crowd(set, ground, mixed_characters(set));
-  crowd.advance(1.0);
-  const long before = fuzzygait::testing::allocation_count();
-  for (int i = 0; i < 120; ++i) {
-    crowd.advance(1.0 / 60.0);
-    crowd.clear_events();
+  for (std::size_t threads : {1, 2}) {
+    gait::Crowd crowd(set, ground, mixed_characters(set), on_threads(threads));
+    EXPECT_EQ(crowd.worker_count(), threads);
+    crowd.advance(1.0);
+    const long before = fuzzygait::testing::allocation_count();
+    for (int i = 0; i < 120; ++i) {
+      crowd.advance(1.0 / 60.0);
+      crowd.clear_events();
+    }
+    EXPECT_EQ(fuzzygait::testing::allocation_count(), before) << threads << " threads";
   }
-  EXPECT_EQ(fuzzygait::testing::allocation_count(), before);
+}
+
+// A game's task system as a test can make one: each enqueue() starts a thread per worker, worker
+// w running ranges w, w + workers, ... from the last to the first; finish() joins them. It checks
+// the contract from its side: every item once, ranges of at least min_range.
+struct GameTasks {
+  explicit GameTasks(std::size_t worker_count) : workers(worker_count) {}
+  std::size_t workers;
+  std::vector<std::thread> running;
+  std::mutex mutex;
+  std::vector<int> runs;  // how often each item ran
+
+  static void* enqueue(gait::TaskSystem::Task* task, std::size_t items, std::size_t min_range,
+                       void* task_context, void* user_context) {
+    GameTasks& g = *static_cast<GameTasks*>(user_context);
+    g.runs.assign(items, 0);
+    const std::size_t ranges = (items + min_range - 1) / min_range;
+    for (std::size_t w = 0; w < g.workers; ++w) {
+      g.running.emplace_back([&g, task, items, min_range, task_context, ranges, w] {
+        for (std::size_t r = ranges; r-- > 0;) {
+          if (r % g.workers != w) continue;
+          const std::size_t begin = r * min_range;
+          const std::size_t end = std::min(items, begin + min_range);
+          task(begin, end, w, task_context);
+          std::lock_guard lock(g.mutex);
+          for (std::size_t i = begin; i < end; ++i)
+            ++g.runs[i];
+        }
+      });
+    }
+    return &g;
+  }
+  static void finish(void* user_task, void*) {
+    GameTasks& g = *static_cast<GameTasks*>(user_task);
+    for (std::thread& t : g.running)
+      t.join();
+    g.running.clear();
+  }
+  gait::TaskSystem tasks() {
+    gait::TaskSystem t;
+    t.worker_count = workers;
+    t.enqueue = &enqueue;
+    t.finish = &finish;
+    t.user_context = this;
+    return t;
+  }
+};
+
+// Nine blocks (the last partly filled) on one thread, two, eight, one per hardware thread and a
+// game's own task system of three workers: every character's state, points and events to the
+// bit, frame by frame, and as it would walk alone.
+TEST(Crowd, EveryCharacterWalksTheSameBitsOnAnyNumberOfWorkers) {
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  const terrain::Terrain ground = terrain::Terrain::polyline(
+      {{-10.0, 0.0}, {2.0, 0.0}, {4.0, 0.2}, {6.0, 0.2}, {6.001, 0.1}, {30.0, 0.1}});
+  const std::vector<gait::WalkerOptions> characters =
+      mixed_characters(set, 8 * gait::Crowd::kBlock + 7);
+  std::vector<gait::Walker> alone;
+  for (const gait::WalkerOptions& o : characters)
+    alone.emplace_back(set, o, ground);
+  GameTasks game(3);
+  std::vector<gait::Crowd> crowds;
+  for (std::size_t threads : {1, 2, 8, 0})
+    crowds.emplace_back(set, ground, characters, on_threads(threads));
+  gait::CrowdOptions with_game_tasks;
+  with_game_tasks.tasks = game.tasks();
+  crowds.emplace_back(set, ground, characters, with_game_tasks);
+  EXPECT_EQ(crowds[2].worker_count(), 8u);
+  EXPECT_EQ(crowds[4].worker_count(), 3u);
+  for (int frame = 0; frame < 240; ++frame) {
+    const double dt = frame % 97 == 5 ? 0.05 : 1.0 / 60.0;
+    for (std::size_t i = 0; i < alone.size(); ++i)
+      alone[i].advance(dt);
+    for (gait::Crowd& crowd : crowds) {
+      ASSERT_TRUE(crowd.advance(dt));
+      for (std::size_t i = 0; i < alone.size(); ++i) {
+        expect_same_walk(
+            crowd[i], alone[i],
+            std::to_string(crowd.worker_count()) + " workers, character " + std::to_string(i));
+        if (::testing::Test::HasFatalFailure()) return;
+      }
+      crowd.clear_events();
+    }
+    for (gait::Walker& w : alone)
+      w.clear_events();
+    ASSERT_EQ(std::count(game.runs.begin(), game.runs.end(), 1), 9) << "frame " << frame;
+  }
+}
+
+// The pool hands out each range once, to one worker at a time, and runs short jobs on the
+// calling thread.
+TEST(WorkerPool, RunsEveryRangeOnceOnDistinctWorkers) {
+  gait::WorkerPool pool(4);
+  EXPECT_EQ(pool.threads(), 4u);
+  struct Record {
+    std::vector<std::atomic<int>> runs = std::vector<std::atomic<int>>(1000);
+    std::array<std::atomic<int>, 4> inside{};
+    std::atomic<bool> overlap{false};
+    std::atomic<bool> bad_range{false};
+    std::set<std::thread::id> threads;
+    std::mutex mutex;
+  } record;
+  auto task = [](std::size_t begin, std::size_t end, std::size_t worker, void* context) {
+    Record& r = *static_cast<Record*>(context);
+    if (worker >= 4 || end - begin > 7 || (end - begin < 7 && end != 1000)) r.bad_range = true;
+    if (worker < 4 && r.inside[worker]++ != 0) r.overlap = true;
+    for (std::size_t i = begin; i < end; ++i)
+      ++r.runs[i];
+    {
+      std::lock_guard lock(r.mutex);
+      r.threads.insert(std::this_thread::get_id());
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(50));
+    if (worker < 4) --r.inside[worker];
+  };
+  const gait::TaskSystem tasks = pool.tasks();
+  for (int round = 0; round < 3; ++round) {
+    tasks.finish(tasks.enqueue(task, 1000, 7, &record, tasks.user_context), tasks.user_context);
+  }
+  for (const std::atomic<int>& n : record.runs)
+    ASSERT_EQ(n.load(), 3);
+  EXPECT_FALSE(record.overlap.load());
+  EXPECT_FALSE(record.bad_range.load());
+  EXPECT_GT(record.threads.size(), 1u);
+  EXPECT_LE(record.threads.size(), 4u);
 }
 
 TEST(Crowd, BadInputGetsClearErrors) {
@@ -165,6 +307,12 @@ TEST(Crowd, BadInputGetsClearErrors) {
   EXPECT_TRUE(std::isnan(crowd.set_step_length(3, 0.7)));
   static_assert(noexcept(crowd.advance(0.0))&& noexcept(crowd.set_step_length(0, 0.7))&& noexcept(
       crowd[0])&& noexcept(crowd.clear_events()));
+  gait::CrowdOptions no_finish;
+  no_finish.tasks = gait::TaskSystem{};
+  no_finish.tasks->enqueue = [](gait::TaskSystem::Task*, std::size_t, std::size_t, void*,
+                                void*) -> void* { return nullptr; };
+  EXPECT_THAT([&] { gait::Crowd c(set, ground, characters, no_finish); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("needs enqueue, finish")));
   gait::Crowd empty(set, ground, {});
   EXPECT_EQ(empty.size(), 0u);
   EXPECT_TRUE(empty.advance(1.0));

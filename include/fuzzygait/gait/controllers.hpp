@@ -52,6 +52,15 @@ enum class Metric : std::uint8_t {
 };
 inline constexpr int kMetricCount = 10;
 
+namespace detail {
+// Controller i's workspace among ControllerSet::make_workspaces()'s. When it made none, every
+// controller is on the fast path, which reads no workspace: any will do.
+inline fuzzy::Workspace& workspace_at(std::vector<fuzzy::Workspace>& workspaces, std::size_t i) {
+  static fuzzy::Workspace none;
+  return workspaces.empty() ? none : workspaces[i];
+}
+}  // namespace detail
+
 // The kinds of ground a controller set may have words for (the manifest's "terrain").
 enum class Ground : std::uint8_t { Slopes, Stairs };
 inline constexpr int kGroundCount = 2;
@@ -169,9 +178,12 @@ struct ControllerSet {
   const Controller& controller(int slot, Ground ground, std::size_t word) const;
   // Every controller: the slots' and the terrain's.
   std::size_t controller_count() const { return controllers.size() + terrain_controllers.size(); }
+  // One workspace per controller, in controller_count() order (slots', then terrain's), for
+  // evaluate(); none when every controller is on the fast path, which reads none (so the
+  // characters of a crowd carry none).
+  std::vector<fuzzy::Workspace> make_workspaces() const;
   // The command of `slot` for these metrics: its controller's, or on terrain (metrics incline and
-  // stairs) the words' blend. `workspaces` holds one workspace per controller, in
-  // controller_count() order (slots', then terrain's).
+  // stairs) the words' blend. `workspaces` as make_workspaces() made them.
   double evaluate(int slot, const MetricValues& metrics,
                   std::vector<fuzzy::Workspace>& workspaces) const;
   // The same with each controller's command from `controller(index)`, index in controller_count()

@@ -220,8 +220,7 @@ class Walker {
   double heel_offset_ = 0.0;
   double reach_ = 0.0;  // hip to heel of the straight leg, neutral ankle
   WalkerState state_;
-  // One per slot, on the heap: the fast path never reads them, and a crowd streams its walkers
-  // through the caches every frame.
+  // ControllerSet::make_workspaces(): none when the set's controllers are all on the fast path.
   std::vector<fuzzy::Workspace> workspaces_;
   // Each leg's segment orientations when their sines and cosines were last computed, and those:
   // a time step places a leg several times, mostly with unchanged angles.

@@ -336,14 +336,31 @@ double ControllerSet::evaluate(int slot, const MetricValues& metrics, const Grou
   for (std::size_t i = 0; i < blend.fired; ++i) {
     const int v = blend.words->of_slot[s][blend.word[i]];
     const double command =
-        v < 0 ? controllers[s].evaluate(metrics, workspaces[s])
+        v < 0 ? controllers[s].evaluate(metrics, detail::workspace_at(workspaces, s))
               : terrain_controllers[static_cast<std::size_t>(v)].evaluate(
-                    metrics, workspaces[controllers.size() + static_cast<std::size_t>(v)]);
+                    metrics, detail::workspace_at(
+                                 workspaces, controllers.size() + static_cast<std::size_t>(v)));
     sum += blend.degree[i] * command;
     weights += blend.degree[i];
   }
-  if (!(weights > 0.0)) return controllers[s].evaluate(metrics, workspaces[s]);
+  if (!(weights > 0.0))
+    return controllers[s].evaluate(metrics, detail::workspace_at(workspaces, s));
   return sum / weights;
+}
+
+std::vector<fuzzy::Workspace> ControllerSet::make_workspaces() const {
+  std::vector<fuzzy::Workspace> workspaces;
+  const auto fast = [](const Controller& c) { return c.fast_path(); };
+  if (std::all_of(controllers.begin(), controllers.end(), fast) &&
+      std::all_of(terrain_controllers.begin(), terrain_controllers.end(), fast)) {
+    return workspaces;
+  }
+  workspaces.reserve(controller_count());
+  for (const Controller& c : controllers)
+    workspaces.push_back(c.make_workspace());
+  for (const Controller& c : terrain_controllers)
+    workspaces.push_back(c.make_workspace());
+  return workspaces;
 }
 
 double ControllerSet::evaluate(int slot, const MetricValues& metrics,

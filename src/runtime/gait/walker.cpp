@@ -243,11 +243,7 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
   } else {
     speed_target_ = step_speed();
   }
-  workspaces_.reserve(controllers.controller_count());
-  for (const Controller& c : controllers.controllers)
-    workspaces_.push_back(c.make_workspace());
-  for (const Controller& c : controllers.terrain_controllers)
-    workspaces_.push_back(c.make_workspace());
+  workspaces_ = controllers.make_workspaces();
   events_.reserve(kEventCapacity);
   heel_offset_ = detail::heel_offset(segments_);
   const LegPoints straight = rig::forward_kinematics(segments_, {0.0, 0.0}, 0.0, LegAngles{});
@@ -867,7 +863,7 @@ void WalkerStages::command(Walker& w, StepData& d) {
           backend ? set.evaluate(
                         static_cast<int>(s), m,
                         [&](std::size_t c) { return backend->evaluate(static_cast<int>(c), m); })
-                  : set.controllers[s].evaluate(m, w.workspaces_[s]);
+                  : set.controllers[s].evaluate(m, detail::workspace_at(w.workspaces_, s));
     }
   }
   if (!backend && set.has_terrain_words()) command_on_terrain(w, d);
@@ -896,8 +892,9 @@ Walker WalkerStages::make_walker(const ControllerSet& controllers, const WalkerO
 
 Crowd WalkerStages::make_crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
                                std::span<const WalkerOptions> characters,
-                               std::span<const ControllerBackend* const> backends) {
-  return Crowd(controllers, terrain, characters, backends);
+                               std::span<const ControllerBackend* const> backends,
+                               const CrowdOptions& options) {
+  return Crowd(controllers, terrain, characters, backends, options);
 }
 
 SubSteps detail::sub_steps(double dt, double time_step) noexcept {

@@ -29,11 +29,7 @@ struct StepData {
   std::array<rig::LegAngles, 2> commanded;        // and as the controllers turned them
 };
 
-// advance(dt)'s equal sub-steps, none longer than the time step (none for a refused dt).
-struct SubSteps {
-  int count = 0;
-  double length = 0.0;
-};
+// advance(dt)'s SubSteps (crowd.hpp).
 SubSteps sub_steps(double dt, double time_step) noexcept;
 
 struct WalkerStages {
@@ -75,7 +71,8 @@ struct WalkerStages {
                             const terrain::Terrain& terrain, const ControllerBackend* backend);
   static Crowd make_crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
                           std::span<const WalkerOptions> characters,
-                          std::span<const ControllerBackend* const> backends);
+                          std::span<const ControllerBackend* const> backends,
+                          const CrowdOptions& options = {});
 };
 
 }  // namespace fuzzygait::gait::detail
