@@ -461,6 +461,7 @@ struct CrowdOptions {
   double min_seconds = 0.5;
   int repetitions = 3;
   double spread = 1.1;  // characters' warm-ups spread over this many seconds (a gait cycle)
+  double time_step = gait::WalkerOptions{}.time_step;
 };
 
 // Bytes the allocator has handed out and not had back (glibc's mallinfo2).
@@ -472,7 +473,8 @@ std::size_t heap_in_use() {
 void run_crowd_sizes(const CrowdOptions& c) {
   const gait::ControllerSet set = gait::ControllerSet::builtin("default");
   const terrain::Terrain ground = terrain::Terrain::flat();
-  const gait::WalkerOptions options;
+  gait::WalkerOptions options;
+  options.time_step = c.time_step;
   const double steps_in_frame = steps_per_frame(options);
   std::vector<std::size_t> thread_counts = c.threads;
   const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
@@ -556,6 +558,12 @@ void add_crowd_command(CLI::App& app) {
       ->add_option("--spread", options->spread,
                    "Seconds the characters' warm-ups are spread over (their phases)")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  crowd
+      ->add_option("--time-step", options->time_step,
+                   "The characters' time step, s (level walks keep the contact bounds up to "
+                   "1/90 s: tests/gait/time_step_test.cpp)")
+      ->check(CLI::Range(1e-5, 0.05))
       ->capture_default_str();
   crowd->callback([options]() { run_crowd_sizes(*options); });
 }
