@@ -74,6 +74,7 @@ PYBIND11_MODULE(fuzzygait, m) {
                                 "A file the library cannot read: .source names it, .line the line "
                                 "(0 for the whole file).",
                                 PyExc_ValueError, nullptr);
+  m.attr("__version__") = FUZZYGAIT_VERSION;
   m.attr("ParseError") = fp::py::reinterpret_borrow<fp::py::object>(fp::parse_error_type);
   fp::py::register_exception_translator(fp::translate);
   fp::bind_walk(m);

@@ -10,6 +10,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -39,10 +40,27 @@ struct Crowd {
   gait::Crowd crowd;
 };
 
+// An option's value as T, or TypeError naming the option ("character 3: speed must be a number").
+template <class T>
+T option(const py::handle value, const std::string& who, const std::string& key, const char* what) {
+  const auto refuse = [&] {
+    return py::type_error(who + key + " must be " + what + ", not " +
+                          std::string(py::str(py::type::handle_of(value).attr("__name__"))));
+  };
+  if constexpr (std::is_same_v<T, py::dict>) {
+    if (!py::isinstance<py::dict>(value)) throw refuse();  // (a cast would call dict() on it)
+  }
+  try {
+    return value.cast<T>();
+  } catch (const py::cast_error&) {
+    throw refuse();
+  }
+}
+
 rig::Segments segments_from(const py::dict& given, rig::Segments s, const std::string& who) {
   for (const auto& [key, value] : given) {
     const std::string k = py::str(key);
-    const double v = value.cast<double>();
+    const auto v = option<double>(value, who, "segments: " + k, "a number");
     if (k == "thigh") {
       s.thigh = v;
     } else if (k == "shank") {
@@ -75,19 +93,19 @@ gait::WalkerOptions walker_options(const gait::ControllerSet& set, const py::dic
     const std::string k = py::str(key);
     if (value.is_none()) continue;
     if (k == "step_length") {
-      step = value.cast<double>();
+      step = option<double>(value, who, k, "a number");
     } else if (k == "speed") {
-      speed = value.cast<double>();
+      speed = option<double>(value, who, k, "a number");
     } else if (k == "stature") {
-      stature = value.cast<double>();
+      stature = option<double>(value, who, k, "a number");
     } else if (k == "segments") {
-      segments = value.cast<py::dict>();
+      segments = option<py::dict>(value, who, k, "a dict of segment lengths");
     } else if (k == "time_step") {
-      time_step = value.cast<double>();
+      time_step = option<double>(value, who, k, "a number");
     } else if (k == "warm_up") {
-      warm_up = value.cast<double>();
+      warm_up = option<double>(value, who, k, "a number");
     } else if (k == "seed") {
-      seed = value.cast<std::uint64_t>();
+      seed = option<std::uint64_t>(value, who, k, "a whole number from 0 to 2**64 - 1");
     } else {
       throw std::invalid_argument(who + "unknown option '" + k +
                                   "' (step_length, speed, stature, segments, time_step, seed, "
@@ -275,6 +293,20 @@ void bind_sets_and_ground(py::module_& m) {
             return std::make_shared<terrain::Terrain>(io::terrain_from_spec(spec, "terrain"));
           },
           py::arg("spec"), "As `fuzzygait walk --terrain`: flat, slope:10, stairs:0.17:0.28:6, ...")
+      .def_static(
+          "ramp",
+          [](double degrees, double start) {
+            return std::make_shared<terrain::Terrain>(terrain::Terrain::ramp(degrees, start));
+          },
+          py::arg("degrees"), py::arg("start") = 1.0, "Level ground, then a slope from x = start.")
+      .def_static(
+          "stairs",
+          [](double rise, double tread, int count, double start) {
+            return std::make_shared<terrain::Terrain>(
+                terrain::Terrain::stairs(rise, tread, count, start));
+          },
+          py::arg("rise"), py::arg("tread"), py::arg("count"), py::arg("start") = 1.0,
+          "Level ground, then `count` steps (a negative rise goes down) and a landing.")
       .def("height", &terrain::Terrain::height, py::arg("x"))
       .def_property_readonly("points", [](const terrain::Terrain& t) {
         std::vector<double> v;
@@ -387,7 +419,10 @@ void bind_crowd(py::module_& m) {
              } else {
                for (const py::handle c : characters) {
                  options.push_back(walker_options(
-                     *s, c.cast<py::dict>(), "character " + std::to_string(options.size()) + ": "));
+                     *s,
+                     option<py::dict>(c, "character " + std::to_string(options.size()), "",
+                                      "a dict of Walker options"),
+                     "character " + std::to_string(options.size()) + ": "));
                }
              }
              return std::unique_ptr<Crowd>(new Crowd{s, g, gait::Crowd(*s, *g, options)});

@@ -70,5 +70,7 @@ def test_crowd_commands_and_errors():
         crowd.pose(4)
     with pytest.raises(ValueError, match="character 1: unknown option 'pace'"):
         fg.Crowd("default", [{}, {"pace": 1.0}])
+    with pytest.raises(TypeError, match="character 0 must be a dict of Walker options, not int"):
+        fg.Crowd("default", [3])
     with pytest.raises(ValueError, match="at least 1"):
         fg.Crowd("default", 0)

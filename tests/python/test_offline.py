@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import fuzzygait as fg
-from conftest import CLIP
+from conftest import CLIP, SOURCE_DIR
 
 
 @pytest.fixture(scope="module")
@@ -43,6 +43,19 @@ def test_the_default_evaluates_within_the_readmes_bounds(default_walk):
     bare = fg.evaluate(default_walk, reference=None, step=0.5)
     assert bare.scores["knee"] is None and bare.step_error_percent > 30
     assert "schwartz2008_free" in fg.normative_names()
+
+
+def test_a_walk_is_recorded_for_a_time_on_its_ground_and_measured_against_a_file():
+    ramp = fg.Terrain.ramp(5.0)
+    motion = fg.Walker("default", ground=ramp).record(2.0, fps=60)
+    assert len(motion) == 121 and motion.times[-1] == 2.0 and motion.ground is ramp
+    long_walk = fg.Walker().record(12.0)
+    curves = SOURCE_DIR / "data" / "normative" / "schwartz2008_sagittal_slow.csv"
+    slow = fg.evaluate(long_walk, reference=str(curves))
+    free = fg.evaluate(long_walk)
+    assert slow.scores["knee"]["rmse"] != free.scores["knee"]["rmse"]
+    with pytest.raises(ValueError, match="fewer than two complete gait cycles"):
+        fg.evaluate(motion)
 
 
 def test_a_walk_goes_to_csv_and_bvh_and_back(default_walk, tmp_path):

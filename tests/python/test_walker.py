@@ -69,6 +69,10 @@ def test_the_same_walker_walks_the_same_and_random_starts_follow_their_seed():
     assert not np.array_equal(walk(seed=7), walk(seed=8))
 
 
+def test_the_module_has_a_version():
+    assert fg.__version__.count(".") == 2
+
+
 def test_sets_load_built_in_by_name_and_from_a_folder():
     names = fg.ControllerSet.builtin_names()
     assert {"default", "energetic", "heavy", "cautious"} <= set(names)
@@ -138,6 +142,12 @@ def test_bad_options_raise_value_errors_with_the_librarys_words():
         fg.Walker(segments={"foot": 0.2})
     with pytest.raises(ValueError, match="thigh"):
         fg.Walker(segments={"thigh": -1.0})
+    with pytest.raises(TypeError, match="step_length must be a number, not str"):
+        fg.Walker(step_length="long")
+    with pytest.raises(TypeError, match="seed must be a whole number"):
+        fg.Walker(seed=-1)
+    with pytest.raises(TypeError, match="segments must be a dict of segment lengths, not list"):
+        fg.Walker(segments=[("thigh", 0.4)])
     with pytest.raises(ValueError, match="nosuchstyle"):
         fg.ControllerSet.builtin("nosuchstyle")
     with pytest.raises(ValueError, match="points must be an array of shape"):
