@@ -66,6 +66,11 @@ void bind_motion(py::module_& m) {
           },
           py::arg("path"), "Reads a walk CSV (`fuzzygait walk`'s PREFIX.csv); the ground is level.")
       .def("__len__", [](const Motion& s) { return s.motion.frames.size(); })
+      .def("__repr__",
+           [](const Motion& s) {
+             return "<fuzzygait.Motion of " + std::to_string(s.motion.frames.size()) +
+                    " frames at " + number_text(s.motion.fps) + " fps>";
+           })
       .def_property_readonly("fps", [](const Motion& s) { return s.motion.fps; })
       .def_property_readonly("captured", [](const Motion& s) { return s.motion.captured; })
       .def_property_readonly("segments",
@@ -259,6 +264,11 @@ void bind_report(py::module_& m) {
       .def_property_readonly("scores", &scores_dict,
                              "thigh, knee, ankle: {rmse, pearson, within_2sd, ...} or None")
       .def("to_dict", &report_dict)
+      .def("__repr__",
+           [](const eval::GaitReport& r) {
+             return "<fuzzygait.GaitReport of " + std::to_string(r.cycles) + " cycles: cadence " +
+                    number_text(r.cadence) + ", stance " + number_text(r.stance_percent) + " %>";
+           })
       .def("to_text", [](const eval::GaitReport& r) { return eval::to_text(r); })
       .def("to_json", [](const eval::GaitReport& r) { return eval::to_json(r); })
       .def("missed_contact_bounds",

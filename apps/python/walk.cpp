@@ -4,6 +4,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -378,6 +379,12 @@ void bind_walker(py::module_& m) {
                                return py::make_tuple(gait::name(w.walker.phase(rig::Side::Left)),
                                                      gait::name(w.walker.phase(rig::Side::Right)));
                              })
+      .def("__repr__",
+           [](const Walker& w) {
+             char time[32];
+             std::snprintf(time, sizeof time, "%.3f", w.walker.time());
+             return "<fuzzygait.Walker with '" + w.set->name + "' at " + time + " s>";
+           })
       .def("events", [](const Walker& w) { return events_list(w.walker); })
       .def("clear_events", [](Walker& w) { w.walker.clear_events(); })
       .def(
@@ -430,6 +437,15 @@ void bind_crowd(py::module_& m) {
            py::arg("set") = "default", py::arg("characters") = 1, py::arg("ground") = py::none(),
            "characters: how many default characters, or a dict of Walker options for each.")
       .def("__len__", [](const Crowd& c) { return c.crowd.size(); })
+      .def("__repr__",
+           [](const Crowd& c) {
+             return "<fuzzygait.Crowd of " + std::to_string(c.crowd.size()) + " with '" +
+                    c.set->name + "'>";
+           })
+      .def(
+          "events", [](const Crowd& c, std::size_t i) { return events_list(c.crowd[check(c, i)]); },
+          py::arg("i"), "Character i's contact events since the last clear_events().")
+      .def("clear_events", [](Crowd& c) { c.crowd.clear_events(); })
       .def(
           "advance", [](Crowd& c, double dt) { return c.crowd.advance(dt); }, py::arg("dt"))
       .def(

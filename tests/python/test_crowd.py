@@ -41,6 +41,11 @@ def test_stepping_the_crowd_changes_its_arrays_in_place():
         assert np.array_equal(views["pelvis"][i], pose["pelvis"])
         assert views["pelvis_tilt"][i] == pose["pelvis_tilt"]
     assert views["phases"].dtype == np.uint8 and views["phases"].max() < len(fg.PHASES)
+    events = crowd.events(0)
+    assert events and set(events[0]) == {"time", "side", "event", "where"}
+    crowd.clear_events()
+    assert crowd.events(0) == []
+    assert repr(crowd) == "<fuzzygait.Crowd of 3 with 'default'>"
 
 
 def test_each_character_walks_as_a_lone_walker_bit_for_bit():

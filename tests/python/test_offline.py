@@ -40,6 +40,8 @@ def test_the_default_evaluates_within_the_readmes_bounds(default_walk):
     as_json = json.loads(r.to_json())
     assert as_json["cycles"] == r.cycles
     assert "stance" in r.to_text()
+    assert repr(r).startswith(f"<fuzzygait.GaitReport of {r.cycles} cycles: cadence ")
+    assert repr(default_walk) == f"<fuzzygait.Motion of {len(default_walk)} frames at 120 fps>"
     bare = fg.evaluate(default_walk, reference=None, step=0.5)
     assert bare.scores["knee"] is None and bare.step_error_percent > 30
     assert "schwartz2008_free" in fg.normative_names()

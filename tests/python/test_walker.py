@@ -108,6 +108,7 @@ def test_a_walker_walks_forward_and_shows_its_pose_points_contacts_and_events():
     assert {e["side"] for e in events} == {"left", "right"}
     w.clear_events()
     assert w.events() == []
+    assert repr(w) == "<fuzzygait.Walker with 'energetic' at 3.000 s>"
 
 
 def test_a_walker_walks_by_speed_and_its_commands_clamp():
