@@ -398,6 +398,7 @@ struct TrainArguments {
   int fit_iterations = 30;
   bool fits = true;
   bool base_structure = false;
+  io::ClipOptions reading;  // for the clips given as paths
 };
 
 // The options `fuzzygait train` makes of its flags, checked as it checks them.
@@ -432,7 +433,7 @@ Training train(const py::object& clips, const py::object& base_set, const TrainA
     const Clip clip = py::isinstance<Clip>(c)
                           ? c.cast<Clip>()
                           : Clip{c.cast<std::filesystem::path>().stem().string(),
-                                 io::read_clip(c.cast<std::filesystem::path>())};
+                                 io::read_clip(c.cast<std::filesystem::path>(), a.reading)};
     train_clips.push_back(learn::make_train_clip(clip.name, clip.clip.motion, clip.clip.ground));
   }
   const learn::ClipsBody body = learn::clips_body(train_clips);
@@ -529,7 +530,9 @@ void bind_training(py::module_& m) {
          std::optional<std::string> description, int generations, int polish, int threads,
          std::optional<std::uint64_t> seed, std::vector<double> steps_around, bool grid,
          int recovery, int fit_iterations, bool fits, bool base_structure,
-         const py::object& progress) {
+         const py::object& progress, const std::optional<std::filesystem::path>& map,
+         const std::optional<std::string>& up, const std::optional<double>& unit,
+         const std::optional<std::size_t>& skip) {
         const TrainArguments a{std::move(name),
                                std::move(description),
                                generations,
@@ -541,7 +544,8 @@ void bind_training(py::module_& m) {
                                recovery,
                                fit_iterations,
                                fits,
-                               base_structure};
+                               base_structure,
+                               clip_options(map, up, unit, skip)};
         return train(clips, base, a, progress);
       },
       py::arg("clips"), py::arg("base") = "default", py::kw_only(), py::arg("name") = py::none(),
@@ -550,8 +554,11 @@ void bind_training(py::module_& m) {
       py::arg("steps_around") = std::vector<double>{}, py::arg("grid") = false,
       py::arg("recovery") = 0, py::arg("fit_iterations") = 30, py::arg("fits") = true,
       py::arg("base_structure") = false, py::arg("progress") = py::none(),
-      "Learns a set from clips (Clip objects or BVH paths) as `fuzzygait train` does, with its "
-      "options and defaults. progress(dict) is called each iteration; Ctrl-C stops with the best "
+      py::arg("map") = py::none(), py::arg("up") = py::none(), py::arg("unit") = py::none(),
+      py::arg("skip") = py::none(),
+      "Learns a set from clips (Clip objects, or BVH paths read with map, up, unit and skip as "
+      "read_clip reads them) as `fuzzygait train` does, with its options and defaults. "
+      "progress(dict) is called each iteration; Ctrl-C stops with the best "
       "set so far. Returns a Training: .set (named, with the clips' body and step), costs, "
       "per-clip scores before and after, stages, the words added.");
 }

@@ -129,6 +129,10 @@ def test_training_options_are_checked_and_progress_errors_raise():
         fg.train([CLIP], threads=0)
     with pytest.raises(ValueError, match="steps_around"):
         fg.train([CLIP], steps_around=[5.0])
+    with pytest.raises(ValueError, match="unit must be metres per unit"):
+        fg.train([CLIP], unit=0.0)
+    with pytest.raises(fg.ParseError, match="07_01.bvh"):
+        fg.train([CLIP], skip=100000)
 
     def fail(progress):
         raise KeyError("stop here")
