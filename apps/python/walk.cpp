@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -121,10 +122,12 @@ gait::WalkerOptions walker_options(const gait::ControllerSet& set, const py::dic
   if (speed && !(*speed > 0.0)) {
     throw std::invalid_argument(who + "speed must be above 0 m/s");
   }
-  gait::WalkerOptions o;
-  const bool body_given = stature || !segments.empty();
-  o.segments =
-      set.body && !body_given ? *set.body : rig::segments_from_stature(stature.value_or(1.75));
+  gait::WalkerOptions o;  // its segments a 1.75 m adult's
+  if (stature) {
+    o.segments = rig::segments_from_stature(*stature);
+  } else if (set.body && segments.empty()) {
+    o.segments = *set.body;
+  }
   o.segments = segments_from(segments, o.segments, who);
   const bool own_pace = !step && !speed && set.body_step_length.has_value();
   o.step_length = own_pace ? *set.body_step_length : step.value_or(o.step_length);
@@ -420,17 +423,17 @@ void bind_crowd(py::module_& m) {
              GroundPtr g = to_ground(ground);
              std::vector<gait::WalkerOptions> options;
              if (py::isinstance<py::int_>(characters)) {
-               const auto count = characters.cast<py::ssize_t>();
-               if (count < 1) throw std::invalid_argument("Crowd: characters must be at least 1");
+               const auto count = std::max<py::ssize_t>(characters.cast<py::ssize_t>(), 0);
                options.assign(static_cast<std::size_t>(count), walker_options(*s, py::dict(), ""));
              } else {
                for (const py::handle c : characters) {
+                 const std::string who = "character " + std::to_string(options.size());
                  options.push_back(walker_options(
-                     *s,
-                     option<py::dict>(c, "character " + std::to_string(options.size()), "",
-                                      "a dict of Walker options"),
-                     "character " + std::to_string(options.size()) + ": "));
+                     *s, option<py::dict>(c, who, "", "a dict of Walker options"), who + ": "));
                }
+             }
+             if (options.empty()) {
+               throw std::invalid_argument("Crowd: characters must be at least 1");
              }
              return std::unique_ptr<Crowd>(new Crowd{s, g, gait::Crowd(*s, *g, options)});
            }),

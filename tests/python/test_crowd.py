@@ -77,5 +77,6 @@ def test_crowd_commands_and_errors():
         fg.Crowd("default", [{}, {"pace": 1.0}])
     with pytest.raises(TypeError, match="character 0 must be a dict of Walker options, not int"):
         fg.Crowd("default", [3])
-    with pytest.raises(ValueError, match="at least 1"):
-        fg.Crowd("default", 0)
+    for none in (0, -2, []):
+        with pytest.raises(ValueError, match="at least 1"):
+            fg.Crowd("default", none)

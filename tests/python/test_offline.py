@@ -110,6 +110,9 @@ def test_training_on_a_clip_gives_a_set_that_walks_and_saves(tmp_path):
     assert again.name == "mine" and again.body == pytest.approx(t.set.body, abs=1e-4)
     w = fg.Walker(again)
     assert w.step_length == pytest.approx(t.set.body_step_length, abs=1e-4)
+    assert w.segments == again.body  # a trained set walks its own body and step unless told
+    assert fg.Walker(again, stature=1.7).segments == fg.segments_from_stature(1.7)
+    assert fg.Walker(again, step_length=0.6).step_length == pytest.approx(0.6)
     w.advance(2.0)
     assert w.pelvis[0] > 1.0
 
