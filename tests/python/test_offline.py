@@ -76,6 +76,9 @@ def test_a_clip_is_read_and_measured():
     assert clip.name == "07_01" and clip.unit == "CMU" and clip.up in ("y", "z")
     assert 90 < clip.cadence < 130 and 0.5 < clip.step_length < 0.8 and clip.speed > 0.8
     assert clip.motion.captured and len(clip.motion) > 200 and clip.cycles
+    assert clip.metres_per_unit > 0 and clip.skipped_frames in (0, 1)
+    assert all(isinstance(note, str) for note in clip.notes)
+    assert repr(clip).startswith("<fuzzygait.Clip '07_01': ")
     report = fg.evaluate(clip.motion)
     assert report.cycles >= 1 and 50 < report.stance_percent < 70
 

@@ -126,6 +126,8 @@ def test_slopes_and_stairs_are_walked_from_a_spec_or_points():
     assert w.pelvis[1] > w.ground.height(0.0) + 0.8
     stairs = fg.Terrain.from_spec("stairs:0.17:0.28:4")
     assert stairs.points.shape[1] == 2
+    assert fg.Terrain.stairs(0.17, 0.28, 4).height(10.0) == pytest.approx(4 * 0.17)
+    assert fg.Terrain.flat().height(123.0) == 0.0
     line = fg.Terrain.polyline(np.array([[-10.0, 0.0], [10.0, 0.5]]))
     assert line.height(0.0) == pytest.approx(0.25)
 
