@@ -21,6 +21,8 @@ packages=(
   chromium                         # the studio's browser test (tests/studio), headless
   # the mocap reader's reference extractor (tests/tools/bvh_sagittal.py), run by the tests
   python3
+  # the Python module, import fuzzygait (apps/python; built for /usr/bin/python3), and its tests
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 # A Node.js installed otherwise counts: NodeSource's nodejs package bundles npm and conflicts with

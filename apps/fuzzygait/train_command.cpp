@@ -77,34 +77,6 @@ nlohmann::ordered_json score_json(const learn::ClipScore& s) {
   return j;
 }
 
-// The clips' body and step, their means: what a set trained on them walks by default.
-struct MeanBody {
-  rig::Segments body{};
-  double step = 0.0;
-  double speed = 0.0;
-  std::string names;  // "07_01, 07_02"
-};
-MeanBody mean_body(const std::vector<learn::TrainClip>& clips) {
-  MeanBody m;
-  for (const learn::TrainClip& c : clips) {
-    m.names += (m.names.empty() ? "" : ", ") + c.name;
-    const rig::Segments& s = c.motion.segments;
-    m.body.thigh += s.thigh;
-    m.body.shank += s.shank;
-    m.body.ankle_height += s.ankle_height;
-    m.body.heel += s.heel;
-    m.body.ball += s.ball;
-    m.body.toe += s.toe;
-    m.step += c.step_length;
-    m.speed += c.report.speed;
-  }
-  const auto n = static_cast<double>(clips.size());
-  for (double* v : {&m.body.thigh, &m.body.shank, &m.body.ankle_height, &m.body.heel, &m.body.ball,
-                    &m.body.toe, &m.step, &m.speed})
-    *v /= n;
-  return m;
-}
-
 // One WalksCheck as a heading ("WHAT: N of M walks within BOUNDS"), a line per miss, and as
 // `json`'s KEY_walks, KEY_within_bounds and KEY_misses.
 std::string walks_check_text(const learn::WalksCheck& check, const std::string& what,
@@ -122,7 +94,7 @@ std::string walks_check_text(const learn::WalksCheck& check, const std::string& 
 
 // The grid's contact bounds, stairs and ramps, and the random starts of `set`, as text and into
 // `json`.
-std::string checks(const gait::ControllerSet& set, const MeanBody& body, int starts,
+std::string checks(const gait::ControllerSet& set, const learn::ClipsBody& body, int starts,
                    nlohmann::ordered_json& json) {
   std::string text = walks_check_text(learn::check_grid(set),
                                       "level grid (steps 0.50-0.85 m, statures 1.50-2.00 m)",
@@ -248,7 +220,7 @@ void add_train_command(CLI::App& app) {
                 << fixed(c.step_length, 3) << " m, stance " << fixed(c.report.stance_percent, 1)
                 << " %, cadence " << fixed(c.report.cadence, 1) << " steps/min\n";
     }
-    const MeanBody clips_body = mean_body(clips);
+    const learn::ClipsBody clips_body = learn::clips_body(clips);
     if (!o->evaluate.empty()) {
       nlohmann::ordered_json json;
       json["set"] = base.name;

@@ -62,6 +62,9 @@ class Crowd {
   std::size_t worker_count() const noexcept { return tasks_.worker_count; }
   // A character (i < size()): its pose, points, state and events, read as a Walker's.
   const Walker& operator[](std::size_t i) const noexcept { return walkers_[i]; }
+  // Every character, in order, contiguous in memory for the crowd's life: so a binding can view
+  // their states (Walker::state()) in place, a character's a fixed stride from the one before.
+  std::span<const Walker> walkers() const noexcept { return walkers_; }
   // Walker::set_step_length() of character i: the step length now commanded, or NaN (nothing
   // changed) when i is not a character of the crowd.
   double set_step_length(std::size_t i, double metres) noexcept;

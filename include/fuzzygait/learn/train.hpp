@@ -90,6 +90,17 @@ struct StridePoint {
   double step = 0.0;
   double weight = 1.0;
 };
+// The clips' body, step and speed, their means: what a set trained on them walks by default (the
+// manifest's "body", ControllerSet::body, body_step_length and body_speed).
+struct ClipsBody {
+  rig::Segments body{};
+  double step = 0.0;   // m, TrainClip::step_length
+  double speed = 0.0;  // m/s, the clips' reports'
+  std::string names;   // "07_01, 07_02"
+};
+// Throws std::invalid_argument when there is no clip.
+ClipsBody clips_body(std::span<const TrainClip> clips);
+
 // The stride points of the clips: each one's pace and step.
 std::vector<StridePoint> stride_points(std::span<const TrainClip> clips);
 // `set` with its stride (ControllerSet::stride) fitted to `points`: every step word's value v

@@ -346,6 +346,28 @@ StartsCheck check_starts(const gait::ControllerSet& set, const rig::Segments& bo
   return check;
 }
 
+ClipsBody clips_body(std::span<const TrainClip> clips) {
+  if (clips.empty()) throw std::invalid_argument("the clips' body: no clips");
+  ClipsBody m;
+  for (const TrainClip& c : clips) {
+    m.names += (m.names.empty() ? "" : ", ") + c.name;
+    const rig::Segments& s = c.motion.segments;
+    m.body.thigh += s.thigh;
+    m.body.shank += s.shank;
+    m.body.ankle_height += s.ankle_height;
+    m.body.heel += s.heel;
+    m.body.ball += s.ball;
+    m.body.toe += s.toe;
+    m.step += c.step_length;
+    m.speed += c.report.speed;
+  }
+  const auto n = static_cast<double>(clips.size());
+  for (double* v : {&m.body.thigh, &m.body.shank, &m.body.ankle_height, &m.body.heel, &m.body.ball,
+                    &m.body.toe, &m.step, &m.speed})
+    *v /= n;
+  return m;
+}
+
 std::vector<StridePoint> stride_points(std::span<const TrainClip> clips) {
   std::vector<StridePoint> points;
   for (const TrainClip& c : clips) {

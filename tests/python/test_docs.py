@@ -1,0 +1,15 @@
+"""The Python in the README and docs/python.md runs as written."""
+import re
+
+import pytest
+
+from conftest import SOURCE_DIR
+
+
+@pytest.mark.parametrize("document", ["README.md", "docs/python.md"])
+def test_the_documents_python_runs(document):
+    text = (SOURCE_DIR / document).read_text()
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert blocks
+    for block in blocks:
+        exec(compile(block, document, "exec"), {})
