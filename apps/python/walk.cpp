@@ -418,7 +418,7 @@ void bind_crowd(py::module_& m) {
       "views of the crowd's memory: advance() changes them in place.");
   crowd
       .def(py::init([](const py::object& set, const py::object& characters,
-                       const py::object& ground) {
+                       const py::object& ground, std::size_t threads) {
              SetPtr s = to_set(set);
              GroundPtr g = to_ground(ground);
              std::vector<gait::WalkerOptions> options;
@@ -435,10 +435,15 @@ void bind_crowd(py::module_& m) {
              if (options.empty()) {
                throw std::invalid_argument("Crowd: characters must be at least 1");
              }
-             return std::unique_ptr<Crowd>(new Crowd{s, g, gait::Crowd(*s, *g, options)});
+             gait::CrowdOptions cores;
+             cores.threads = threads;
+             return std::unique_ptr<Crowd>(new Crowd{s, g, gait::Crowd(*s, *g, options, cores)});
            }),
            py::arg("set") = "default", py::arg("characters") = 1, py::arg("ground") = py::none(),
-           "characters: how many default characters, or a dict of Walker options for each.")
+           py::arg("threads") = 1,
+           "characters: how many default characters, or a dict of Walker options for each; "
+           "threads: how many step them (0: one a core), the walks the same bits on any number.")
+      .def_property_readonly("workers", [](const Crowd& c) { return c.crowd.worker_count(); })
       .def("__len__", [](const Crowd& c) { return c.crowd.size(); })
       .def("__repr__",
            [](const Crowd& c) {
@@ -450,7 +455,9 @@ void bind_crowd(py::module_& m) {
           py::arg("i"), "Character i's contact events since the last clear_events().")
       .def("clear_events", [](Crowd& c) { c.crowd.clear_events(); })
       .def(
-          "advance", [](Crowd& c, double dt) { return c.crowd.advance(dt); }, py::arg("dt"))
+          "advance", [](Crowd& c, double dt) { return c.crowd.advance(dt); }, py::arg("dt"),
+          py::call_guard<py::gil_scoped_release>(),
+          "Advances every character by dt seconds (Python's other threads run meanwhile).")
       .def(
           "set_speed", [](Crowd& c, std::size_t i, double v) { return c.crowd.set_speed(i, v); },
           py::arg("i"), py::arg("metres_per_second"))

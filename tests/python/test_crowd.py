@@ -65,6 +65,18 @@ def test_each_character_walks_as_a_lone_walker_bit_for_bit():
         assert tuple(fg.PHASES[p] for p in crowd.phases[i]) == w.phases
 
 
+def test_a_crowd_on_two_threads_walks_the_same_bits():
+    people = [{"step_length": 0.5 + 0.004 * i} for i in range(80)]  # three blocks
+    one = fg.Crowd("default", people)
+    two = fg.Crowd("default", people, threads=2)
+    assert one.workers == 1 and two.workers == 2
+    for _ in range(60):
+        one.advance(1 / 60)
+        two.advance(1 / 60)
+    assert np.array_equal(one.angles, two.angles)
+    assert np.array_equal(one.pelvis, two.pelvis)
+
+
 def test_crowd_commands_and_errors():
     crowd = fg.Crowd("heavy", 4, ground="slope:5")
     assert len(crowd) == 4 and crowd.batched_controllers
