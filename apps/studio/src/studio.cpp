@@ -1,8 +1,12 @@
 #include "fuzzygait/studio/studio.hpp"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -499,6 +503,55 @@ json Studio::open(const json& request) {
           {"compare", s.compared_walk()}};
 }
 
+namespace {
+
+// The .fll files a saved set's manifest names (the studio's own earlier save of it): the only
+// files a save may remove.
+std::set<std::string> manifest_files(const std::filesystem::path& manifest) {
+  std::set<std::string> files;
+  std::ifstream in(manifest);
+  const json m = json::parse(in, nullptr, false);
+  const std::function<void(const json&)> collect = [&](const json& value) {
+    if (value.is_string()) {
+      const std::string name = value.get<std::string>();
+      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".fll") == 0 &&
+          name.find('/') == std::string::npos && name != ".." && name != ".")
+        files.insert(name);
+    } else if (value.is_structured()) {
+      for (const json& item : value)
+        collect(item);
+    }
+  };
+  if (!m.is_discarded()) collect(m);
+  return files;
+}
+
+// Refuses a save whose folder is a symbolic link, holds one, or is not a folder of the workspace:
+// a save writes only into WORKSPACE/NAME itself.
+void check_save_folder(const std::filesystem::path& workspace,
+                       const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  auto refuse = [](const fs::path& path, const std::string& why) {
+    throw RequestError(422, "name", "cannot save to " + path.string() + ": " + why);
+  };
+  std::error_code error;
+  const fs::file_status status = fs::symlink_status(folder, error);
+  if (!fs::exists(status)) return;
+  if (fs::is_symlink(status))
+    refuse(folder, "it is a symbolic link (a save writes only into the workspace)");
+  if (!fs::is_directory(status)) refuse(folder, "it is not a folder");
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
+    if (entry.is_symlink(error))
+      refuse(entry.path(), "it is a symbolic link (a save writes only into the workspace)");
+  }
+  const fs::path real_workspace = fs::weakly_canonical(workspace, error);
+  const fs::path real_folder = fs::weakly_canonical(folder, error);
+  if (error || real_folder.parent_path() != real_workspace)
+    refuse(folder, "it is not inside the workspace " + real_workspace.string());
+}
+
+}  // namespace
+
 json Studio::save(const json& request) {
   Session& s = *session_;
   detail::check_fields(request, {"name"});
@@ -510,15 +563,22 @@ json Studio::save(const json& request) {
                            name + "'");
   }
   const std::filesystem::path folder = s.options.workspace / name;
+  check_save_folder(s.options.workspace, folder);
   gait::ControllerSet copy = s.current;
   copy.name = name;
   try {
-    // A set saved there before may have had terrain files this one has not.
-    std::error_code error;
-    for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
-      if (entry.path().extension() == ".fll") std::filesystem::remove(entry.path());
-    }
+    // A set saved there before may have had terrain files this one has not: those its manifest
+    // names go; other files stay.
+    const std::set<std::string> before = manifest_files(folder / "manifest.json");
     io::save_controller_set(copy, folder);
+    const std::set<std::string> now = manifest_files(folder / "manifest.json");
+    for (const std::string& file : before) {
+      std::error_code error;
+      const std::filesystem::path path = folder / file;
+      if (!now.count(file) &&
+          std::filesystem::is_regular_file(std::filesystem::symlink_status(path, error)))
+        std::filesystem::remove(path, error);
+    }
   } catch (const std::exception& e) {
     throw RequestError(500, "name", "cannot save to " + folder.string() + ": " + e.what());
   }
