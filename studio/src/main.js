@@ -18,6 +18,8 @@ const studio = {
   errors: [],
   redraws: 0,
   ready: false,
+  away: false, // the server does not answer: the page retries and shows a notice
+  reconnects: 0, // times it came back, after which the page showed the server's state again
 };
 window.studio = studio;
 // Stops the playback at t seconds (the browser test compares pictures at one instant); `play`
@@ -73,12 +75,15 @@ async function next() {
   }
   busy = true;
   const sent = performance.now();
+  let reconnected = false;
+  let refusedEdit = false;
   try {
-    const answer = await api.post(item.path, item.body);
+    const { result: answer, retried } = await untilAnswered(() => api.post(item.path, item.body));
+    reconnected = retried;
     const received = performance.now();
     item.apply(answer);
     const applied = performance.now();
-    if (item.path === '/api/edit') {
+    if (item.path === '/api/edit' && !retried) {
       requestAnimationFrame(() => {
         studio.latencies.push({
           total: performance.now() - item.startedAt,
@@ -90,11 +95,61 @@ async function next() {
       });
     }
   } catch (error) {
+    reconnected = Boolean(error.retried);
+    refusedEdit = item.path === '/api/edit';
     showError(error);
-    if (item.path === '/api/edit') await resync();
+  }
+  // Back from an absence the server may be another one (restarted): the page shows its state
+  // whole. After a refused edit, the controllers as the server has them.
+  try {
+    if (reconnected) await reload();
+    else if (refusedEdit) await resync();
+  } catch (error) {
+    showError(error);
   }
   busy = false;
   next();
+}
+
+// ---- the server away: retry until it answers, then show its state ------------------------------
+
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
+// Calls `call` (a request) until the server answers it: a refusal is an answer (it throws, as
+// always), a failure to reach the server is not: the page shows that the server is away and
+// tries again, 0.25 s later at first, then every 2 s. `retried` says whether it was away.
+async function untilAnswered(call) {
+  for (let attempt = 0; ; attempt++) {
+    try {
+      const result = await call();
+      if (attempt > 0) back();
+      return { result, retried: attempt > 0 };
+    } catch (error) {
+      if (error instanceof api.RequestError) {
+        if (attempt > 0) back();
+        error.retried = attempt > 0;
+        throw error;
+      }
+      away();
+      await sleep(Math.min(250 * 2 ** attempt, 2000));
+    }
+  }
+}
+
+function away() {
+  if (studio.away) return;
+  studio.away = true;
+  studio.awaySeen = (studio.awaySeen || 0) + 1;
+  const notice = $('#connection');
+  notice.textContent = 'The server is away: reconnecting…';
+  notice.className = 'visible';
+}
+
+function back() {
+  if (!studio.away) return;
+  studio.away = false;
+  studio.reconnects++;
+  $('#connection').className = '';
 }
 
 let messageTimer = 0;
@@ -114,11 +169,34 @@ function showError(error) {
 
 // After a refused edit, the page shows the server's set again.
 async function resync() {
-  const state = await api.get('/api/state');
+  const { result: state, retried } = await untilAnswered(() => api.get('/api/state'));
+  if (retried) {
+    await reload();
+    return;
+  }
   studio.state = state;
   for (const c of state.set.controllers) panel.update(c);
   refreshParameters();
   updateHistory(state.history);
+}
+
+// The server's whole state and walk, shown anew (at start, and when the server is back).
+async function reload() {
+  const [{ result: state }, { result: walk }] = await Promise.all([
+    untilAnswered(() => api.get('/api/state')), untilAnswered(() => api.get('/api/walk'))]);
+  show(state, walk);
+  if (studio.ready) showMessage('Reconnected: the page shows the server’s set as it has it');
+}
+
+function show(state, walk) {
+  studio.state = state;
+  studio.compare = walk.compare || null;
+  curves.setReference(state.reference);
+  updateHistory(state.history);
+  renderSet();
+  buildSettings();
+  buildCompareChoices();
+  setWalk(walk.walk, walk.compare);
 }
 
 // ---- applying answers ------------------------------------------------------------------------
@@ -461,15 +539,7 @@ async function start() {
   panel = new ControllerPanel($('#controller-list'), { onKnot, onWord });
   wireToolbar();
   wirePlayback();
-  const [state, walk] = await Promise.all([api.get('/api/state'), api.get('/api/walk')]);
-  studio.state = state;
-  curves.setReference(state.reference);
-  if (walk.compare) studio.compare = walk.compare;
-  updateHistory(state.history);
-  renderSet();
-  buildSettings();
-  buildCompareChoices();
-  setWalk(walk.walk, walk.compare);
+  await reload();
   requestAnimationFrame(frame);
   studio.ready = true;
 }
