@@ -92,7 +92,9 @@ TEST(WalkCommand, BadOptionsAreRefusedWithTheReason) {
   refused("--start-pose random:99999999999999999999999", "random:");
   refused("--cycles 1", "cycles");
   // CLI11's own range checks let NaN through.
-  refused("--duration nan", "--duration must be between 0 and 36000 s, got nan");
+  refused("--duration nan", "--duration must be more than 0 and at most 36000 s, got nan");
+  refused("--duration 0", "--duration must be more than 0 and at most 36000 s, got 0");
+  refused("--duration 36001", "--duration must be more than 0 and at most 36000 s, got 36001");
   refused("--fps nan", "--fps must be between 10 and 2000, got nan");
   // One frame a second cannot see the feet strike (a cycle takes about one second).
   refused("--fps 1", "--fps must be between 10 and 2000, got 1");
