@@ -6,7 +6,7 @@ import { Clock, Motion } from './motion.js';
 import { View3D } from './view3d.js';
 import { SideView } from './sideview.js';
 import { Curves, renderFigures } from './curves.js';
-import { ControllerPanel } from './controllers.js';
+import { ControllerPanel, sayWhenClamped } from './controllers.js';
 
 // What the page holds, and what the browser test reads: the latencies of edits from the input
 // event to the frame that shows their walk, the requests in flight, the errors shown.
@@ -45,7 +45,7 @@ let compareMotion = null;
 // ---- requests: one at a time, in order; a newer value of the same gesture replaces one waiting -
 
 let busy = false;
-const queue = []; // {path, body, apply, startedAt, key}
+const queue = []; // {path, body, apply, startedAt, key, refused}
 const idleWaiters = [];
 
 // Resolves when no request is in flight or waiting (the browser test awaits it).
@@ -56,14 +56,16 @@ studio.idle = () => new Promise((resolve) => {
 
 let requestCount = 0;
 // `key` says which waiting request this one may replace: the same drag's edits, settings (merged).
-function request(path, body, apply, startedAt = performance.now(), key = `${path}#${++requestCount}`) {
+// `refused(error)`, when given, may handle a refusal (returning true) instead of showing it.
+function request(path, body, apply, startedAt = performance.now(), key = `${path}#${++requestCount}`,
+  refused = null) {
   const last = queue[queue.length - 1];
   if (last && last.key === key) {
     last.body = path === '/api/settings' ? { ...last.body, ...body } : body;
     last.startedAt = startedAt;
     return;
   }
-  queue.push({ path, body, apply, startedAt, key });
+  queue.push({ path, body, apply, startedAt, key, refused });
   if (!busy) next();
 }
 
@@ -97,7 +99,7 @@ async function next() {
   } catch (error) {
     reconnected = Boolean(error.retried);
     refusedEdit = item.path === '/api/edit';
-    showError(error);
+    if (!(item.refused && error instanceof api.RequestError && item.refused(error))) showError(error);
   }
   // Back from an absence the server may be another one (restarted): the page shows its state
   // whole. After a refused edit, the controllers as the server has them.
@@ -222,6 +224,7 @@ function updateHistory(history) {
   $('#undo').title = history.undo ? `Undo: ${history.undo_label}` : 'Nothing to undo';
   $('#redo').title = history.redo ? `Redo: ${history.redo_label}` : 'Nothing to redo';
   $('#history-label').textContent = history.undo ? `last: ${history.undo_label}` : '';
+  $('#unsaved').hidden = !history.unsaved;
 }
 
 function replaceController(controller) {
@@ -381,6 +384,9 @@ function buildSettings() {
   parameterGui = set.addFolder('The set’s own numbers');
   buildParameters();
   parameterGui.close();
+  for (const c of settingsGui.controllersRecursive()) {
+    if (c._min !== undefined) sayWhenClamped(c, c._name, (text) => showMessage(text, 'error'));
+  }
 }
 
 let parameterGui = null;
@@ -454,14 +460,27 @@ function wireToolbar() {
   $('#compare').addEventListener('change', (event) => compareWith(event.target.value));
   $('#save-form').addEventListener('submit', (event) => {
     event.preventDefault();
-    const name = $('#save-name').value.trim();
-    request('/api/save', { name }, (answer) => {
-      studio.state.sets = answer.sets;
-      buildCompareChoices();
-      buildSettings();
-      showMessage(`Saved to ${answer.folder}`);
-      studio.saved = answer.saved;
-    });
+    save($('#save-name').value.trim());
+  });
+}
+
+// Saves the set as `name`; where another set is saved under it, asks before replacing it.
+function save(name, overwrite = false) {
+  request('/api/save', overwrite ? { name, overwrite } : { name }, (answer) => {
+    studio.state.sets = answer.sets;
+    updateHistory(answer.history);
+    buildCompareChoices();
+    buildSettings();
+    showMessage(`Saved to ${answer.folder}`);
+    studio.saved = answer.saved;
+  }, performance.now(), undefined, (error) => {
+    if (error.status !== 409 || error.field !== 'name' || overwrite) return false;
+    if (window.confirm(`${error.message.split(': save with')[0]}.\n\nReplace it with this set?`)) {
+      save(name, true);
+    } else {
+      showMessage(`Not saved: '${name}' holds another set`, 'error');
+    }
+    return true;
   });
 }
 
@@ -536,7 +555,9 @@ async function start() {
   view3d = new View3D($('#view3d'), $('#settings'));
   side = new SideView($('#side-canvas'));
   curves = new Curves($('#curves'));
-  panel = new ControllerPanel($('#controller-list'), { onKnot, onWord });
+  panel = new ControllerPanel($('#controller-list'), {
+    onKnot, onWord, onClamped: (text) => showMessage(text, 'error'),
+  });
   wireToolbar();
   wirePlayback();
   await reload();

@@ -319,6 +319,39 @@ TEST(EvalCommand, PrintsTheTableAndWritesTheJson) {
   EXPECT_EQ(printed.at("cycles"), j.at("cycles"));
 }
 
+// `fuzzygait fuzzy check` flags a term whose points are out of order (which fuzzylite reads as
+// a shape other than its name says), naming the file, the line and the term.
+TEST(FuzzyCheckCommand, FlagsATermWhosePointsAreOutOfOrder) {
+  const std::filesystem::path fll = scratch("disordered.fll");
+  std::ofstream(fll) << "Engine: disordered\n"
+                        "InputVariable: delta\n"
+                        "  range: -1 1.29\n"
+                        "  term: start Triangle -1 -1 0.9\n"
+                        "  term: center Triangle 0.9 5 1.29\n"
+                        "OutputVariable: out\n"
+                        "  range: -1 1\n"
+                        "  aggregation: Maximum\n"
+                        "  defuzzifier: Centroid 100\n"
+                        "  default: 0\n"
+                        "  term: up Triangle 0 1 1\n"
+                        "RuleBlock: rules\n"
+                        "  implication: Minimum\n"
+                        "  rule: if delta is center then out is up\n";
+  const auto run = run_program("fuzzy check " + shell_quoted(fll));
+  EXPECT_NE(run.status, 0);
+  EXPECT_THAT(run.output,
+              HasSubstr(fll.string() +
+                        ":5: term 'center' (Triangle): 'vertexB' 5 is past 'vertexC' 1.29; its "
+                        "points must be in order (in 'delta')"));
+  // In order, it is ready.
+  std::string text = read_text(fll);
+  text.replace(text.find("0.9 5 1.29"), 10, "0.9 1 1.29");
+  std::ofstream(fll) << text;
+  const auto fixed = run_program("fuzzy check " + shell_quoted(fll));
+  EXPECT_EQ(fixed.status, 0) << fixed.output;
+  EXPECT_THAT(fixed.output, HasSubstr("status: ready"));
+}
+
 TEST(EvalCommand, BadFilesNameTheFileAndLine) {
   const std::filesystem::path good = scratch("good");
   ASSERT_EQ(run_program("walk --cycles 3 -o " + shell_quoted(good)).status, 0);

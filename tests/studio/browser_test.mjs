@@ -87,9 +87,11 @@ const pageErrors = [];
 page.on('pageerror', (error) => pageErrors.push(error.message));
 // While the test has stopped the server, the browser logs the requests it could not make.
 let serverAway = false;
+let expectConflict = false;
 page.on('console', (message) => {
   if (message.type() !== 'error') return;
   if (serverAway && /ERR_CONNECTION_REFUSED|ERR_CONNECTION_RESET|ERR_EMPTY_RESPONSE/.test(message.text())) return;
+  if (expectConflict && /status of 409/.test(message.text())) return;
   pageErrors.push(message.text());
 });
 
@@ -111,6 +113,16 @@ async function dragKnot(index, moves, dx) {
   for (let i = 1; i <= moves; i++) await page.mouse.move(b.x + b.width / 2 + i * dx, b.y + b.height / 2, { steps: 2 });
   await page.mouse.up();
   await idle();
+}
+// Types `text` into the field of the swing knee's output word `name`; resolves, once the page is
+// idle, with the word's value on the page.
+async function typeWord(name, text) {
+  const field = page.locator(`.controller[data-controller="swing_knee"] [data-word="${name}"] input`).first();
+  await field.fill(text);
+  await field.press('Enter');
+  await idle();
+  return page.evaluate((word) => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee')
+    .outputs[0].words.find((w) => w.name === word).value, name);
 }
 const knotValue = () => studio(() => window.studio.state.set.controllers
   .find((c) => c.id === 'swing_knee').inputs[0].knots[1]);
@@ -168,11 +180,13 @@ try {
   await shot('studio_dragged.png');
 
   // ---- save, reload, find the edit ----
+  check(await page.locator('#unsaved').isVisible(), 'the edit is marked unsaved');
   await page.fill('#save-name', 'browser_edit');
   await page.click('#save-form button');
   await idle();
   const saved = join(workspace, 'browser_edit');
   check(existsSync(join(saved, 'manifest.json')), 'Save wrote the set\'s folder');
+  check(!(await page.locator('#unsaved').isVisible()), 'once saved, the set is not marked unsaved');
   const fll = existsSync(join(saved, 'swing_knee.fll')) ? readFileSync(join(saved, 'swing_knee.fll'), 'utf8') : '';
   check(fll.includes(`term: center Triangle -1 ${knotAfter} 1.29`), 'the saved swing_knee.fll holds the moved knot');
   await page.reload();
@@ -225,12 +239,7 @@ try {
 
   // ---- an output word typed into its slider's field, a step length into the panel's ----
   const undoBefore = (await studio(() => window.studio.state.history)).undo;
-  const word = page.locator('.controller[data-controller="swing_knee"] [data-word="hold"] input').first();
-  await word.fill('50');
-  await word.press('Enter');
-  await idle();
-  const hold = await studio(() => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee')
-    .outputs[0].words.find((w) => w.name === 'hold').value);
+  const hold = await typeWord('hold', '50');
   check(hold === 50, `the word 'hold' took the value typed (${hold})`);
   check((await studio(() => window.studio.state.history)).undo === undoBefore + 1, 'the word is one step of the history');
   const step = page.locator('#settings').getByLabel('step length (m)', { exact: true });
@@ -308,9 +317,7 @@ try {
     const stopped = new Promise((resolve) => server.child.on('exit', resolve));
     server.child.kill('SIGINT');
     await stopped;
-    const word = page.locator('.controller[data-controller="swing_knee"] [data-word="hold"] input').first();
-    await word.fill('55');
-    await word.press('Enter');
+    const typed = typeWord('hold', '55');
     await page.waitForFunction(() => window.studio.away, null, { timeout: 10000 });
     check(await page.locator('#connection').isVisible(), 'with the server away the page shows a notice');
     check((await page.locator('#connection').textContent()).includes('reconnecting'),
@@ -318,6 +325,7 @@ try {
     await page.waitForTimeout(1500);
     server = startServer(new URL(address).port);
     await server.started;
+    await typed;
     await page.waitForFunction(() => !window.studio.away && window.studio.reconnects > 0, null,
       { timeout: 20000 });
     await idle();
@@ -334,6 +342,38 @@ try {
     check(JSON.stringify(curveAfter) !== JSON.stringify(curveBack) &&
       JSON.stringify(curveAfter) !== JSON.stringify(curveBefore), 'an edit after the reconnection changes the walk');
     check((await studio(() => window.studio.state.history)).undo === 2, 'and is a step of the history');
+
+    // This server's set saved over the one saved as browser_edit by the first: asked first.
+    const manifest = readFileSync(join(saved, 'manifest.json'), 'utf8');
+    const fllBefore = readFileSync(join(saved, 'swing_knee.fll'), 'utf8');
+    expectConflict = true; // the browser logs the 409 the page answers with a question
+    const dialogs = [];
+    page.once('dialog', (dialog) => {
+      dialogs.push(dialog.message());
+      dialog.dismiss();
+    });
+    await page.fill('#save-name', 'browser_edit');
+    await page.click('#save-form button');
+    await idle();
+    check(dialogs.length === 1 && dialogs[0].includes('browser_edit'), `saving over another set asks first ("${dialogs[0]}")`);
+    check(readFileSync(join(saved, 'swing_knee.fll'), 'utf8') === fllBefore &&
+      readFileSync(join(saved, 'manifest.json'), 'utf8') === manifest, 'declined, nothing is written');
+    check(await page.locator('#unsaved').isVisible(), 'and the set is still marked unsaved');
+    page.once('dialog', (dialog) => dialog.accept());
+    await page.click('#save-form button');
+    await idle();
+    check(readFileSync(join(saved, 'swing_knee.fll'), 'utf8') !== fllBefore, 'accepted, the set is written over it');
+    check(!(await page.locator('#unsaved').isVisible()), 'and is not marked unsaved');
+    expectConflict = false;
+
+    // A number past the slider's end is taken as the end, and the page says so.
+    const flexFast = await typeWord('flex_fast', '5000');
+    const said = await page.locator('#message').textContent();
+    check(flexFast < 5000 && said.includes('5000') && said.includes(`set to ${flexFast}`) &&
+      await page.locator('#message').isVisible(),
+    `a word typed past the slider's end is taken as the end, and the page says so ("${said}")`);
+    await page.click('#undo');
+    await idle();
   }
 
   // ---- a picture of the page drawn as with a graphics card: an edit against the set as opened ----

@@ -289,6 +289,13 @@ TEST(StudioApi, RefusalsNameTheFieldAndChangeNothing) {
              {"term", "hold"},
              {"value", 1e6}}),
        422, "value"},
+      {"a term's points put out of order (a triangle 0.9 5 1.29)",
+       edit({{"controller", "swing_knee"},
+             {"variable", "delta"},
+             {"term", "center"},
+             {"parameter", 1},
+             {"value", 5}}),
+       422, "value"},
       {"an unknown controller", edit({{"controller", "neck"}, {"variable", "delta"}}), 422,
        "controller"},
       {"an unknown variable",
@@ -449,6 +456,59 @@ TEST(StudioApi, SaveNeverFollowsALinkOutOfTheWorkspaceNorDeletesOthersFiles) {
   studio.save({{"name", "mine"}});
   EXPECT_EQ(read(options.workspace / "mine" / "notes.fll"), "Engine: notes\n");
   EXPECT_TRUE(fs::is_regular_file(options.workspace / "mine" / "swing_knee.fll"));
+}
+
+// The history says whether the set has edits not saved; a save over another set saved under
+// the name is refused (409) unless asked to overwrite it, and changes nothing then.
+TEST(StudioApi, UnsavedEditsAreMarkedAndASaveDoesNotReplaceAnotherSetUnasked) {
+  StudioOptions options = quick("unsaved");
+  Studio studio(options);
+  const auto unsaved = [&] { return studio.state().at("history").at("unsaved").get<bool>(); };
+  EXPECT_FALSE(unsaved());
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 30}});
+  EXPECT_TRUE(unsaved());
+  EXPECT_FALSE(studio.save({{"name", "first"}}).at("history").at("unsaved").get<bool>());
+  studio.undo();
+  EXPECT_TRUE(unsaved());
+  studio.redo();
+  EXPECT_FALSE(unsaved());
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 40}});
+  EXPECT_TRUE(unsaved());
+  studio.save({{"name", "first"}});  // saved there by this session: no question
+  studio.open({{"set", "style:heavy"}});
+  EXPECT_FALSE(unsaved());
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 20}});
+  const std::string manifest = [&] {
+    std::ifstream in(options.workspace / "first" / "manifest.json");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  try {
+    studio.save({{"name", "first"}});
+    ADD_FAILURE() << "the heavy set replaced the set saved as 'first' unasked";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.status(), 409);
+    EXPECT_EQ(e.field(), "name");
+    EXPECT_THAT(e.what(), HasSubstr("overwrite"));
+  }
+  std::ifstream in(options.workspace / "first" / "manifest.json");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), manifest);
+  EXPECT_TRUE(unsaved());
+  EXPECT_EQ(refusal([&] {
+              studio.save({{"name", "first"}, {"overwrite", "yes"}});
+            }),
+            std::make_pair(400, std::string("overwrite")));
+  studio.save({{"name", "first"}, {"overwrite", true}});
+  EXPECT_FALSE(unsaved());
+  std::ifstream replaced(options.workspace / "first" / "manifest.json");
+  EXPECT_NE(std::string(std::istreambuf_iterator<char>(replaced), {}), manifest);
+  // The set opened from a saved folder saves back to it.
+  studio.open({{"set", "saved:first"}});
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 25}});
+  EXPECT_NO_THROW(studio.save({{"name", "first"}}));
 }
 
 TEST(StudioApi, OpeningAStyleIsAResetThatCanBeUndone) {

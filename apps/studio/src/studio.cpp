@@ -1,6 +1,7 @@
 #include "fuzzygait/studio/studio.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -98,6 +99,7 @@ struct Studio::Session {
     gait::ControllerSet set;  // the set before the step
     std::string label;        // what the step did
     Opened opened;            // the set opened before the step
+    std::uint64_t version;    // the set's version (Session::version)
   };
   struct Compared {
     std::string id;
@@ -122,6 +124,12 @@ struct Studio::Session {
   std::optional<detail::Walked> walked;
   std::optional<json> walk_view;
   std::optional<Compared> compared;
+  // Each set the session holds has a version, new with every change; the version last opened
+  // or saved is the one without unsaved edits (history's "unsaved").
+  std::uint64_t version = 0;
+  std::uint64_t versions = 0;
+  std::uint64_t saved_version = 0;
+  std::string saved_name;  // where the set was opened from or last saved since ("" for none)
 
   std::vector<std::string> offered_terrains() const {
     std::vector<std::string> specs;
@@ -192,7 +200,8 @@ struct Studio::Session {
     return {{"undo", undo.size()},
             {"redo", redo.size()},
             {"undo_label", undo.empty() ? "" : undo.back().label},
-            {"redo_label", redo.empty() ? "" : redo.back().label}};
+            {"redo_label", redo.empty() ? "" : redo.back().label},
+            {"unsaved", version != saved_version}};
   }
 
   json settings_json() const {
@@ -239,11 +248,12 @@ struct Studio::Session {
 
   // Puts `set` in place of the current one as one step of the history.
   void replace(gait::ControllerSet set, std::string label) {
-    undo.push_back({std::move(current), std::move(label), opened});
+    undo.push_back({std::move(current), std::move(label), opened, version});
     if (undo.size() > Limits::kHistory) undo.erase(undo.begin());
     redo.clear();
     gesture.clear();
     current = std::move(set);
+    version = ++versions;
     forget_walks();
   }
 
@@ -252,8 +262,9 @@ struct Studio::Session {
   json step_through(std::vector<Step>& from, std::vector<Step>& to) {
     Step step = std::move(from.back());
     from.pop_back();
-    to.push_back({std::move(current), step.label, opened});
+    to.push_back({std::move(current), step.label, opened, version});
     current = std::move(step.set);
+    version = step.version;
     set_opened(std::move(step.opened));
     gesture.clear();
     fit_step();
@@ -370,6 +381,7 @@ json Studio::edit(const json& request) {
     // The same drag: one step of the history from where the drag began.
     s.undo.back().label = edited.label(s.gesture_from);
     s.current = std::move(edited.set);
+    s.version = ++s.versions;
     s.redo.clear();
     s.forget_walks();
   } else {
@@ -492,6 +504,9 @@ json Studio::open(const json& request) {
   auto [set, label] = s.load(id, "set");
   auto opened = std::make_shared<const gait::ControllerSet>(set);
   s.replace(std::move(set), "open " + label);
+  s.saved_version = s.version;  // a set as opened has no unsaved edits
+  // The set saves back where it was opened from without asking; elsewhere only when new.
+  s.saved_name = id.rfind("saved:", 0) == 0 ? id.substr(6) : "";
   s.set_opened({id, label, std::move(opened)});
   s.fit_step();
   s.forget_walks();
@@ -554,8 +569,9 @@ void check_save_folder(const std::filesystem::path& workspace,
 
 json Studio::save(const json& request) {
   Session& s = *session_;
-  detail::check_fields(request, {"name"});
+  detail::check_fields(request, {"name", "overwrite"});
   const std::string name = detail::string_field(request, "name");
+  const bool overwrite = detail::optional_flag(request, "overwrite");
   if (!detail::is_plain_name(name)) {
     throw RequestError(422, "name",
                        "a set's name is 1 to 64 letters, digits, '-' or '_' (it names a folder "
@@ -564,6 +580,15 @@ json Studio::save(const json& request) {
   }
   const std::filesystem::path folder = s.options.workspace / name;
   check_save_folder(s.options.workspace, folder);
+  // Another set saved under the name is replaced only when asked: not the set opened from there
+  // or saved there since it was opened.
+  std::error_code exists_error;
+  if (!overwrite && std::filesystem::exists(folder / "manifest.json", exists_error) &&
+      name != s.saved_name) {
+    throw RequestError(409, "name",
+                       "a set is saved as '" + name + "' already (" + folder.string() +
+                           "): save with \"overwrite\": true to replace it");
+  }
   gait::ControllerSet copy = s.current;
   copy.name = name;
   try {
@@ -582,7 +607,12 @@ json Studio::save(const json& request) {
   } catch (const std::exception& e) {
     throw RequestError(500, "name", "cannot save to " + folder.string() + ": " + e.what());
   }
-  return {{"saved", "saved:" + name}, {"folder", folder.string()}, {"sets", s.sets()}};
+  s.saved_version = s.version;
+  s.saved_name = name;
+  return {{"saved", "saved:" + name},
+          {"folder", folder.string()},
+          {"sets", s.sets()},
+          {"history", s.history()}};
 }
 
 json Studio::compare(const json& request) {
