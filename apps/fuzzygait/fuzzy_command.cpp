@@ -185,7 +185,11 @@ void add_fuzzy_command(CLI::App& app) {
   CLI::App* check = fuzzy->add_subcommand("check", "Validate an engine and summarise it");
   check->add_option("engine", *check_path, "Engine in FLL")->required();
   check->callback([check_path]() {
-    const Engine engine = read_fll_file(*check_path);
+    // Stricter than the other subcommands: a term whose points are out of order is an error
+    // naming its line (fuzzylite reads it, as a shape other than its name says).
+    FllOptions strict;
+    strict.ordered_points = true;
+    const Engine engine = read_fll_file(*check_path, strict);
     print_summary(engine, std::cout);
     const std::vector<std::string> problems = engine.problems();
     if (problems.empty()) {

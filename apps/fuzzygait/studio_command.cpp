@@ -79,6 +79,10 @@ void add_studio_command(CLI::App& app) {
   cmd->add_option("--host", o->server.host,
                   "Address to listen on (default 127.0.0.1: this machine only; any other exposes "
                   "the studio and its Save to the network)");
+  cmd->add_option("--allow-host", o->server.allowed_hosts,
+                  "Names or addresses a browser may reach the studio by besides 127.0.0.1, "
+                  "localhost and --host (this machine's address on the network, with --host "
+                  "0.0.0.0); requests naming any other host are refused");
   cmd->footer(
       "Prints the address to open in a browser and serves until Ctrl-C. The page's Save writes\n"
       "a set to WORKSPACE/NAME (manifest.json and FLL files, as controllers/ holds them).");
@@ -89,6 +93,12 @@ void add_studio_command(CLI::App& app) {
     studio::Studio session(o->studio);
     studio::Server server(session, o->server);
     StopOnSignal stop(server);
+    if (!server.loopback()) {
+      std::cerr << "fuzzygait studio: warning: listening on " << o->server.host
+                << ", not loopback: anyone who reaches this machine can edit sets and save them "
+                   "into the workspace (requests must name it 127.0.0.1, localhost, [::1], "
+                << o->server.host << " or an --allow-host name)" << std::endl;
+    }
     std::cout << "fuzzygait studio: open " << server.address() << " in a browser (Ctrl-C stops)"
               << std::endl;
     if (!server.run()) throw std::runtime_error("the studio stopped listening");

@@ -168,7 +168,7 @@ void add_walk_command(CLI::App& app) {
   walk->callback([o, walk]() {
     // CLI11's range checks let NaN through (every comparison with it is false).
     if (walk->count("--duration") > 0 && !(o->duration > 0.0 && o->duration <= 36000.0)) {
-      throw std::invalid_argument("--duration must be between 0 and 36000 s, got " +
+      throw std::invalid_argument("--duration must be more than 0 and at most 36000 s, got " +
                                   common::number_text(o->duration));
     }
     if (!(o->fps >= 10.0 && o->fps <= 2000.0)) {

@@ -359,6 +359,7 @@ class ControllerCard {
       c.domElement.dataset.word = word.name;
       c.onChange((value) => this.handlers.onWord(controller.id, out.name, word.name, value, 'move'));
       c.onFinishChange((value) => this.handlers.onWord(controller.id, out.name, word.name, value, 'end'));
+      if (this.handlers.onClamped) sayWhenClamped(c, readable(word.name), this.handlers.onClamped);
       this.controllers[word.name] = c;
     }
   }
@@ -429,4 +430,23 @@ export class ControllerPanel {
       card.setCompared(other || null);
     }
   }
+}
+
+// lil-gui puts a number typed into a slider's field within the slider's range without a word
+// (880 typed as 5000 became the slider's end, 1144): this says so through `say`, naming the
+// control, the number typed and the one taken.
+export function sayWhenClamped(control, label, say) {
+  const input = control.$input;
+  if (!input) return;
+  let typed = null;
+  input.addEventListener('input', () => {
+    typed = Number.parseFloat(input.value);
+  });
+  input.addEventListener('blur', () => {
+    const [low, high] = [control._min, control._max];
+    if (Number.isFinite(typed) && ((low !== undefined && typed < low) || (high !== undefined && typed > high))) {
+      say(`${label}: ${typed} is outside the slider's ${low} to ${high}; it was set to ${control.getValue()}`);
+    }
+    typed = null;
+  });
 }

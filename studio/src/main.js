@@ -6,7 +6,7 @@ import { Clock, Motion } from './motion.js';
 import { View3D } from './view3d.js';
 import { SideView } from './sideview.js';
 import { Curves, renderFigures } from './curves.js';
-import { ControllerPanel } from './controllers.js';
+import { ControllerPanel, sayWhenClamped } from './controllers.js';
 
 // What the page holds, and what the browser test reads: the latencies of edits from the input
 // event to the frame that shows their walk, the requests in flight, the errors shown.
@@ -18,6 +18,8 @@ const studio = {
   errors: [],
   redraws: 0,
   ready: false,
+  away: false, // the server does not answer: the page retries and shows a notice
+  reconnects: 0, // times it came back, after which the page showed the server's state again
 };
 window.studio = studio;
 // Stops the playback at t seconds (the browser test compares pictures at one instant); `play`
@@ -43,7 +45,7 @@ let compareMotion = null;
 // ---- requests: one at a time, in order; a newer value of the same gesture replaces one waiting -
 
 let busy = false;
-const queue = []; // {path, body, apply, startedAt, key}
+const queue = []; // {path, body, apply, startedAt, key, refused}
 const idleWaiters = [];
 
 // Resolves when no request is in flight or waiting (the browser test awaits it).
@@ -54,14 +56,16 @@ studio.idle = () => new Promise((resolve) => {
 
 let requestCount = 0;
 // `key` says which waiting request this one may replace: the same drag's edits, settings (merged).
-function request(path, body, apply, startedAt = performance.now(), key = `${path}#${++requestCount}`) {
+// `refused(error)`, when given, may handle a refusal (returning true) instead of showing it.
+function request(path, body, apply, startedAt = performance.now(), key = `${path}#${++requestCount}`,
+  refused = null) {
   const last = queue[queue.length - 1];
   if (last && last.key === key) {
     last.body = path === '/api/settings' ? { ...last.body, ...body } : body;
     last.startedAt = startedAt;
     return;
   }
-  queue.push({ path, body, apply, startedAt, key });
+  queue.push({ path, body, apply, startedAt, key, refused });
   if (!busy) next();
 }
 
@@ -73,12 +77,15 @@ async function next() {
   }
   busy = true;
   const sent = performance.now();
+  let reconnected = false;
+  let refusedEdit = false;
   try {
-    const answer = await api.post(item.path, item.body);
+    const { result: answer, retried } = await untilAnswered(() => api.post(item.path, item.body));
+    reconnected = retried;
     const received = performance.now();
     item.apply(answer);
     const applied = performance.now();
-    if (item.path === '/api/edit') {
+    if (item.path === '/api/edit' && !retried) {
       requestAnimationFrame(() => {
         studio.latencies.push({
           total: performance.now() - item.startedAt,
@@ -90,11 +97,61 @@ async function next() {
       });
     }
   } catch (error) {
+    reconnected = Boolean(error.retried);
+    refusedEdit = item.path === '/api/edit';
+    if (!(item.refused && error instanceof api.RequestError && item.refused(error))) showError(error);
+  }
+  // Back from an absence the server may be another one (restarted): the page shows its state
+  // whole. After a refused edit, the controllers as the server has them.
+  try {
+    if (reconnected) await reload();
+    else if (refusedEdit) await resync();
+  } catch (error) {
     showError(error);
-    if (item.path === '/api/edit') await resync();
   }
   busy = false;
   next();
+}
+
+// ---- the server away: retry until it answers, then show its state ------------------------------
+
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
+// Calls `call` (a request) until the server answers it: a refusal is an answer (it throws, as
+// always), a failure to reach the server is not: the page shows that the server is away and
+// tries again, 0.25 s later at first, then every 2 s. `retried` says whether it was away.
+async function untilAnswered(call) {
+  for (let attempt = 0; ; attempt++) {
+    try {
+      const result = await call();
+      if (attempt > 0) back();
+      return { result, retried: attempt > 0 };
+    } catch (error) {
+      if (error instanceof api.RequestError) {
+        if (attempt > 0) back();
+        error.retried = attempt > 0;
+        throw error;
+      }
+      away();
+      await sleep(Math.min(250 * 2 ** attempt, 2000));
+    }
+  }
+}
+
+function away() {
+  if (studio.away) return;
+  studio.away = true;
+  studio.awaySeen = (studio.awaySeen || 0) + 1;
+  const notice = $('#connection');
+  notice.textContent = 'The server is away: reconnecting…';
+  notice.className = 'visible';
+}
+
+function back() {
+  if (!studio.away) return;
+  studio.away = false;
+  studio.reconnects++;
+  $('#connection').className = '';
 }
 
 let messageTimer = 0;
@@ -114,11 +171,34 @@ function showError(error) {
 
 // After a refused edit, the page shows the server's set again.
 async function resync() {
-  const state = await api.get('/api/state');
+  const { result: state, retried } = await untilAnswered(() => api.get('/api/state'));
+  if (retried) {
+    await reload();
+    return;
+  }
   studio.state = state;
   for (const c of state.set.controllers) panel.update(c);
   refreshParameters();
   updateHistory(state.history);
+}
+
+// The server's whole state and walk, shown anew (at start, and when the server is back).
+async function reload() {
+  const [{ result: state }, { result: walk }] = await Promise.all([
+    untilAnswered(() => api.get('/api/state')), untilAnswered(() => api.get('/api/walk'))]);
+  show(state, walk);
+  if (studio.ready) showMessage('Reconnected: the page shows the server’s set as it has it');
+}
+
+function show(state, walk) {
+  studio.state = state;
+  studio.compare = walk.compare || null;
+  curves.setReference(state.reference);
+  updateHistory(state.history);
+  renderSet();
+  buildSettings();
+  buildCompareChoices();
+  setWalk(walk.walk, walk.compare);
 }
 
 // ---- applying answers ------------------------------------------------------------------------
@@ -144,6 +224,7 @@ function updateHistory(history) {
   $('#undo').title = history.undo ? `Undo: ${history.undo_label}` : 'Nothing to undo';
   $('#redo').title = history.redo ? `Redo: ${history.redo_label}` : 'Nothing to redo';
   $('#history-label').textContent = history.undo ? `last: ${history.undo_label}` : '';
+  $('#unsaved').hidden = !history.unsaved;
 }
 
 function replaceController(controller) {
@@ -303,6 +384,9 @@ function buildSettings() {
   parameterGui = set.addFolder('The set’s own numbers');
   buildParameters();
   parameterGui.close();
+  for (const c of settingsGui.controllersRecursive()) {
+    if (c._min !== undefined) sayWhenClamped(c, c._name, (text) => showMessage(text, 'error'));
+  }
 }
 
 let parameterGui = null;
@@ -376,14 +460,27 @@ function wireToolbar() {
   $('#compare').addEventListener('change', (event) => compareWith(event.target.value));
   $('#save-form').addEventListener('submit', (event) => {
     event.preventDefault();
-    const name = $('#save-name').value.trim();
-    request('/api/save', { name }, (answer) => {
-      studio.state.sets = answer.sets;
-      buildCompareChoices();
-      buildSettings();
-      showMessage(`Saved to ${answer.folder}`);
-      studio.saved = answer.saved;
-    });
+    save($('#save-name').value.trim());
+  });
+}
+
+// Saves the set as `name`; where another set is saved under it, asks before replacing it.
+function save(name, overwrite = false) {
+  request('/api/save', overwrite ? { name, overwrite } : { name }, (answer) => {
+    studio.state.sets = answer.sets;
+    updateHistory(answer.history);
+    buildCompareChoices();
+    buildSettings();
+    showMessage(`Saved to ${answer.folder}`);
+    studio.saved = answer.saved;
+  }, performance.now(), undefined, (error) => {
+    if (error.status !== 409 || error.field !== 'name' || overwrite) return false;
+    if (window.confirm(`${error.message.split(': save with')[0]}.\n\nReplace it with this set?`)) {
+      save(name, true);
+    } else {
+      showMessage(`Not saved: '${name}' holds another set`, 'error');
+    }
+    return true;
   });
 }
 
@@ -458,18 +555,12 @@ async function start() {
   view3d = new View3D($('#view3d'), $('#settings'));
   side = new SideView($('#side-canvas'));
   curves = new Curves($('#curves'));
-  panel = new ControllerPanel($('#controller-list'), { onKnot, onWord });
+  panel = new ControllerPanel($('#controller-list'), {
+    onKnot, onWord, onClamped: (text) => showMessage(text, 'error'),
+  });
   wireToolbar();
   wirePlayback();
-  const [state, walk] = await Promise.all([api.get('/api/state'), api.get('/api/walk')]);
-  studio.state = state;
-  curves.setReference(state.reference);
-  if (walk.compare) studio.compare = walk.compare;
-  updateHistory(state.history);
-  renderSet();
-  buildSettings();
-  buildCompareChoices();
-  setWalk(walk.walk, walk.compare);
+  await reload();
   requestAnimationFrame(frame);
   studio.ready = true;
 }

@@ -92,7 +92,9 @@ TEST(WalkCommand, BadOptionsAreRefusedWithTheReason) {
   refused("--start-pose random:99999999999999999999999", "random:");
   refused("--cycles 1", "cycles");
   // CLI11's own range checks let NaN through.
-  refused("--duration nan", "--duration must be between 0 and 36000 s, got nan");
+  refused("--duration nan", "--duration must be more than 0 and at most 36000 s, got nan");
+  refused("--duration 0", "--duration must be more than 0 and at most 36000 s, got 0");
+  refused("--duration 36001", "--duration must be more than 0 and at most 36000 s, got 36001");
   refused("--fps nan", "--fps must be between 10 and 2000, got nan");
   // One frame a second cannot see the feet strike (a cycle takes about one second).
   refused("--fps 1", "--fps must be between 10 and 2000, got 1");
@@ -315,6 +317,39 @@ TEST(EvalCommand, PrintsTheTableAndWritesTheJson) {
   ASSERT_EQ(to_stdout.status, 0);
   const nlohmann::json printed = nlohmann::json::parse(to_stdout.output);
   EXPECT_EQ(printed.at("cycles"), j.at("cycles"));
+}
+
+// `fuzzygait fuzzy check` flags a term whose points are out of order (which fuzzylite reads as
+// a shape other than its name says), naming the file, the line and the term.
+TEST(FuzzyCheckCommand, FlagsATermWhosePointsAreOutOfOrder) {
+  const std::filesystem::path fll = scratch("disordered.fll");
+  std::ofstream(fll) << "Engine: disordered\n"
+                        "InputVariable: delta\n"
+                        "  range: -1 1.29\n"
+                        "  term: start Triangle -1 -1 0.9\n"
+                        "  term: center Triangle 0.9 5 1.29\n"
+                        "OutputVariable: out\n"
+                        "  range: -1 1\n"
+                        "  aggregation: Maximum\n"
+                        "  defuzzifier: Centroid 100\n"
+                        "  default: 0\n"
+                        "  term: up Triangle 0 1 1\n"
+                        "RuleBlock: rules\n"
+                        "  implication: Minimum\n"
+                        "  rule: if delta is center then out is up\n";
+  const auto run = run_program("fuzzy check " + shell_quoted(fll));
+  EXPECT_NE(run.status, 0);
+  EXPECT_THAT(run.output,
+              HasSubstr(fll.string() +
+                        ":5: term 'center' (Triangle): 'vertexB' 5 is past 'vertexC' 1.29; its "
+                        "points must be in order (in 'delta')"));
+  // In order, it is ready.
+  std::string text = read_text(fll);
+  text.replace(text.find("0.9 5 1.29"), 10, "0.9 1 1.29");
+  std::ofstream(fll) << text;
+  const auto fixed = run_program("fuzzy check " + shell_quoted(fll));
+  EXPECT_EQ(fixed.status, 0) << fixed.output;
+  EXPECT_THAT(fixed.output, HasSubstr("status: ready"));
 }
 
 TEST(EvalCommand, BadFilesNameTheFileAndLine) {

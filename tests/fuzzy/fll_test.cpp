@@ -206,6 +206,19 @@ TEST(Fll, ScalarsReadLikeFuzzylite) {
   EXPECT_EQ(format_scalar(-HUGE_VAL), "-inf");
 }
 
+// `text` ("bad.fll") is read by default, as fuzzylite reads it, and refused under `strict` with
+// an error holding `error`.
+void expect_read_unless(const std::string& text, const FllOptions& strict,
+                        const std::string& error) {
+  EXPECT_NO_THROW(read_fll(text, "bad.fll")) << text << "\nfuzzylite reads it, and so do we";
+  try {
+    read_fll(text, "bad.fll", strict);
+    ADD_FAILURE() << error << ": was read";
+  } catch (const ParseError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(error));
+  }
+}
+
 TEST(Fll, FiniteNumbersRefusesNanAndInfinityWhereverANumberIs) {
   const FllOptions finite{.finite_numbers = true};
   EXPECT_NO_THROW(read_fll(
@@ -238,14 +251,38 @@ TEST(Fll, FiniteNumbersRefusesNanAndInfinityWhereverANumberIs) {
       text.replace(text.find("default: nan"), 12, "default: 0");
     }
     text.replace(text.find(c.from), c.from.size(), c.to);
-    EXPECT_NO_THROW(read_fll(text, "bad.fll")) << c.to << ": fuzzylite reads it, and so do we";
-    try {
-      read_fll(text, "bad.fll", finite);
-      ADD_FAILURE() << c.to << " was read";
-    } catch (const ParseError& e) {
-      EXPECT_THAT(e.what(), HasSubstr(c.error)) << c.to;
-    }
+    expect_read_unless(text, finite, c.error);
   }
+}
+
+// A term whose points are out of order is read as fuzzylite reads it, and refused, naming the
+// line and the term, under FllOptions::ordered_points (`fuzzygait fuzzy check`).
+TEST(Fll, OrderedPointsRefusesATermWhosePointsAreOutOfOrder) {
+  const FllOptions ordered{.ordered_points = true};
+  EXPECT_NO_THROW(read_fll(kSmall, "ok.fll", ordered));
+  struct Case {
+    std::string from, to, error;
+  };
+  const Case cases[] = {
+      {"low Triangle 0 0 0.5", "low Triangle 0.9 5 1.29",
+       "bad.fll:7: term 'low' (Triangle): 'vertexB' 5 is past 'vertexC' 1.29; its points must "
+       "be in order (in 'in')"},
+      {"low Triangle 0 0 0.5", "low Trapezoid 0 0.2 0.1 0.5",
+       "bad.fll:7: term 'low' (Trapezoid): 'vertexB' 0.2 is past 'vertexC' 0.1"},
+      {"high Triangle 0.5 1 1 0.75", "high PiShape 0.6 0.5 1 1",
+       "bad.fll:8: term 'high' (PiShape): 'bottomLeft' 0.6 is past 'topLeft' 0.5"},
+      {"neg Ramp 0 -1", "neg Rectangle 0 -1",
+       "bad.fll:17: term 'neg' (Rectangle): 'start' 0 is past 'end' -1"},
+  };
+  for (const Case& c : cases) {
+    std::string text = kSmall;
+    text.replace(text.find(c.from), c.from.size(), c.to);
+    expect_read_unless(text, ordered, c.error);
+  }
+  // Points that meet are in order (a shoulder), and a Ramp's direction is its own.
+  std::string shoulder = kSmall;
+  shoulder.replace(shoulder.find("0 0 0.5"), 7, "0 0.5 0.5");
+  EXPECT_NO_THROW(read_fll(shoulder, "ok.fll", ordered));
 }
 
 TEST(Fll, AnEmptyFileOrADirectoryIsAnError) {

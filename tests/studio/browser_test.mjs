@@ -2,8 +2,9 @@
 // `fuzzygait studio`, loads the page over http, drags a knot and sees the knee curve and the walk
 // change, saves the set, reloads and finds the edit, resets to the shipped style and opens the
 // saved set again, compares it with the set as opened, walks it up stairs, downloads the glTF and
-// has the Khronos glTF-Validator check it, and measures the time from an edit's input event to the
-// frame that shows its new walk (10 gait cycles). Screenshots go to OUT_DIR.
+// has the Khronos glTF-Validator check it, measures the time from an edit's input event to the
+// frame that shows its new walk (10 gait cycles), and stops the server mid-edit and starts it
+// again: the page shows that it is away, then recovers by itself. Screenshots go to OUT_DIR.
 //
 //   node browser_test.mjs FUZZYGAIT_PROGRAM OUT_DIR [--max-median-ms N]
 //
@@ -45,23 +46,29 @@ function check(condition, what) {
 // ---- the program ------------------------------------------------------------------------------
 
 const workspace = mkdtempSync(join(tmpdir(), 'fuzzygait-studio-'));
-const server = spawn(program, ['studio', '--port', '0', '--workspace', workspace],
-  { stdio: ['ignore', 'pipe', 'pipe'] });
-let serverOutput = '';
-const address = await new Promise((resolve, reject) => {
-  const timer = setTimeout(() => reject(new Error(`no address printed: ${serverOutput}`)), 30000);
-  const read = (chunk) => {
-    serverOutput += chunk;
-    const match = /open (http:\/\/127\.0\.0\.1:\d+\/)/.exec(serverOutput);
-    if (match) {
-      clearTimeout(timer);
-      resolve(match[1]);
-    }
-  };
-  server.stdout.on('data', read);
-  server.stderr.on('data', read);
-  server.on('exit', (code) => reject(new Error(`fuzzygait studio exited (${code}): ${serverOutput}`)));
-});
+// Starts `fuzzygait studio` on `port` (0: any) with the workspace; resolves with its address.
+function startServer(port) {
+  const child = spawn(program, ['studio', '--port', String(port), '--workspace', workspace],
+    { stdio: ['ignore', 'pipe', 'pipe'] });
+  let output = '';
+  const started = new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`no address printed: ${output}`)), 30000);
+    const read = (chunk) => {
+      output += chunk;
+      const match = /open (http:\/\/127\.0\.0\.1:\d+\/)/.exec(output);
+      if (match) {
+        clearTimeout(timer);
+        resolve(match[1]);
+      }
+    };
+    child.stdout.on('data', read);
+    child.stderr.on('data', read);
+    child.on('exit', (code) => reject(new Error(`fuzzygait studio exited (${code}): ${output}`)));
+  });
+  return { child, started };
+}
+let server = startServer(0);
+const address = await server.started;
 console.log(`fuzzygait studio at ${address}`);
 
 // ---- the browser ------------------------------------------------------------------------------
@@ -78,8 +85,14 @@ const context = await chromium.launchPersistentContext(profile, {
 const page = context.pages()[0] ?? await context.newPage();
 const pageErrors = [];
 page.on('pageerror', (error) => pageErrors.push(error.message));
+// While the test has stopped the server, the browser logs the requests it could not make.
+let serverAway = false;
+let expectConflict = false;
 page.on('console', (message) => {
-  if (message.type() === 'error') pageErrors.push(message.text());
+  if (message.type() !== 'error') return;
+  if (serverAway && /ERR_CONNECTION_REFUSED|ERR_CONNECTION_RESET|ERR_EMPTY_RESPONSE/.test(message.text())) return;
+  if (expectConflict && /status of 409/.test(message.text())) return;
+  pageErrors.push(message.text());
 });
 
 const studio = (expression) => page.evaluate(expression);
@@ -90,6 +103,27 @@ const idle = async () => {
 };
 const knot = (controller, variable, index) =>
   page.locator(`circle.knot[data-controller="${controller}"][data-variable="${variable}"][data-knot="${index}"]`);
+// Drags the swing knee's `delta` knot `index` by `moves` moves of `dx` pixels, and waits for the walk.
+async function dragKnot(index, moves, dx) {
+  const h = knot('swing_knee', 'delta', index);
+  await h.scrollIntoViewIfNeeded();
+  const b = await h.boundingBox();
+  await page.mouse.move(b.x + b.width / 2, b.y + b.height / 2);
+  await page.mouse.down();
+  for (let i = 1; i <= moves; i++) await page.mouse.move(b.x + b.width / 2 + i * dx, b.y + b.height / 2, { steps: 2 });
+  await page.mouse.up();
+  await idle();
+}
+// Types `text` into the field of the swing knee's output word `name`; resolves, once the page is
+// idle, with the word's value on the page.
+async function typeWord(name, text) {
+  const field = page.locator(`.controller[data-controller="swing_knee"] [data-word="${name}"] input`).first();
+  await field.fill(text);
+  await field.press('Enter');
+  await idle();
+  return page.evaluate((word) => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee')
+    .outputs[0].words.find((w) => w.name === word).value, name);
+}
 const knotValue = () => studio(() => window.studio.state.set.controllers
   .find((c) => c.id === 'swing_knee').inputs[0].knots[1]);
 const kneeCurve = () => studio(() => window.studio.walk.curves.knee.mean);
@@ -146,11 +180,13 @@ try {
   await shot('studio_dragged.png');
 
   // ---- save, reload, find the edit ----
+  check(await page.locator('#unsaved').isVisible(), 'the edit is marked unsaved');
   await page.fill('#save-name', 'browser_edit');
   await page.click('#save-form button');
   await idle();
   const saved = join(workspace, 'browser_edit');
   check(existsSync(join(saved, 'manifest.json')), 'Save wrote the set\'s folder');
+  check(!(await page.locator('#unsaved').isVisible()), 'once saved, the set is not marked unsaved');
   const fll = existsSync(join(saved, 'swing_knee.fll')) ? readFileSync(join(saved, 'swing_knee.fll'), 'utf8') : '';
   check(fll.includes(`term: center Triangle -1 ${knotAfter} 1.29`), 'the saved swing_knee.fll holds the moved knot');
   await page.reload();
@@ -174,16 +210,7 @@ try {
   await page.locator('#settings button', { hasText: 'reset to the shipped style' }).click();
   await idle();
   await page.mouse.move(0, 0);
-  {
-    const h = knot('swing_knee', 'delta', 1);
-    await h.scrollIntoViewIfNeeded();
-    const b = await h.boundingBox();
-    await page.mouse.move(b.x + b.width / 2, b.y + b.height / 2);
-    await page.mouse.down();
-    for (let i = 1; i <= 6; i++) await page.mouse.move(b.x + b.width / 2 + i * 5, b.y + b.height / 2, { steps: 2 });
-    await page.mouse.up();
-    await idle();
-  }
+  await dragKnot(1, 6, 5);
   await page.selectOption('#compare', 'opened');
   await idle();
   const compared = await studio(() => window.studio.compare && window.studio.compare.walk.curves.knee.mean);
@@ -212,12 +239,7 @@ try {
 
   // ---- an output word typed into its slider's field, a step length into the panel's ----
   const undoBefore = (await studio(() => window.studio.state.history)).undo;
-  const word = page.locator('.controller[data-controller="swing_knee"] [data-word="hold"] input').first();
-  await word.fill('50');
-  await word.press('Enter');
-  await idle();
-  const hold = await studio(() => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee')
-    .outputs[0].words.find((w) => w.name === 'hold').value);
+  const hold = await typeWord('hold', '50');
   check(hold === 50, `the word 'hold' took the value typed (${hold})`);
   check((await studio(() => window.studio.state.history)).undo === undoBefore + 1, 'the word is one step of the history');
   const step = page.locator('#settings').getByLabel('step length (m)', { exact: true });
@@ -288,6 +310,72 @@ try {
   await idle();
   await shot('studio_stairs.png');
 
+  // ---- the server away mid-edit, then back on the same port: the page says so and recovers ----
+  {
+    const curveBefore = await kneeCurve();
+    serverAway = true;
+    const stopped = new Promise((resolve) => server.child.on('exit', resolve));
+    server.child.kill('SIGINT');
+    await stopped;
+    const typed = typeWord('hold', '55');
+    await page.waitForFunction(() => window.studio.away, null, { timeout: 10000 });
+    check(await page.locator('#connection').isVisible(), 'with the server away the page shows a notice');
+    check((await page.locator('#connection').textContent()).includes('reconnecting'),
+      `the notice says it is reconnecting ("${await page.locator('#connection').textContent()}")`);
+    await page.waitForTimeout(1500);
+    server = startServer(new URL(address).port);
+    await server.started;
+    await typed;
+    await page.waitForFunction(() => !window.studio.away && window.studio.reconnects > 0, null,
+      { timeout: 20000 });
+    await idle();
+    serverAway = false;
+    check(!(await page.locator('#connection').isVisible()), 'with the server back the notice is gone');
+    const history = await studio(() => window.studio.state.history);
+    const hold = await studio(() => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee')
+      .outputs[0].words.find((w) => w.name === 'hold').value);
+    check(history.undo === 1 && hold === 55,
+      `the edit made while it was away landed on the server that came back (undo ${history.undo}, hold ${hold})`);
+    const curveBack = await kneeCurve();
+    await dragKnot(1, 5, 5);
+    const curveAfter = await kneeCurve();
+    check(JSON.stringify(curveAfter) !== JSON.stringify(curveBack) &&
+      JSON.stringify(curveAfter) !== JSON.stringify(curveBefore), 'an edit after the reconnection changes the walk');
+    check((await studio(() => window.studio.state.history)).undo === 2, 'and is a step of the history');
+
+    // This server's set saved over the one saved as browser_edit by the first: asked first.
+    const manifest = readFileSync(join(saved, 'manifest.json'), 'utf8');
+    const fllBefore = readFileSync(join(saved, 'swing_knee.fll'), 'utf8');
+    expectConflict = true; // the browser logs the 409 the page answers with a question
+    const dialogs = [];
+    page.once('dialog', (dialog) => {
+      dialogs.push(dialog.message());
+      dialog.dismiss();
+    });
+    await page.fill('#save-name', 'browser_edit');
+    await page.click('#save-form button');
+    await idle();
+    check(dialogs.length === 1 && dialogs[0].includes('browser_edit'), `saving over another set asks first ("${dialogs[0]}")`);
+    check(readFileSync(join(saved, 'swing_knee.fll'), 'utf8') === fllBefore &&
+      readFileSync(join(saved, 'manifest.json'), 'utf8') === manifest, 'declined, nothing is written');
+    check(await page.locator('#unsaved').isVisible(), 'and the set is still marked unsaved');
+    page.once('dialog', (dialog) => dialog.accept());
+    await page.click('#save-form button');
+    await idle();
+    check(readFileSync(join(saved, 'swing_knee.fll'), 'utf8') !== fllBefore, 'accepted, the set is written over it');
+    check(!(await page.locator('#unsaved').isVisible()), 'and is not marked unsaved');
+    expectConflict = false;
+
+    // A number past the slider's end is taken as the end, and the page says so.
+    const flexFast = await typeWord('flex_fast', '5000');
+    const said = await page.locator('#message').textContent();
+    check(flexFast < 5000 && said.includes('5000') && said.includes(`set to ${flexFast}`) &&
+      await page.locator('#message').isVisible(),
+    `a word typed past the slider's end is taken as the end, and the page says so ("${said}")`);
+    await page.click('#undo');
+    await idle();
+  }
+
   // ---- a picture of the page drawn as with a graphics card: an edit against the set as opened ----
   await page.goto(`${address}?render=full`);
   await page.waitForFunction(() => window.studio && window.studio.ready, null, { timeout: 30000 });
@@ -295,15 +383,7 @@ try {
   await idle();
   await settingSelect('terrain').selectOption({ label: 'level ground' });
   await idle();
-  {
-    const h = knot('swing_knee', 'delta', 1);
-    const b = await h.boundingBox();
-    await page.mouse.move(b.x + b.width / 2, b.y + b.height / 2);
-    await page.mouse.down();
-    for (let i = 1; i <= 5; i++) await page.mouse.move(b.x + b.width / 2 - i * 4, b.y + b.height / 2, { steps: 2 });
-    await page.mouse.up();
-    await idle();
-  }
+  await dragKnot(1, 5, -4);
   await page.selectOption('#compare', 'opened');
   await idle();
   await studio(() => window.studio.seek(2.55));
@@ -323,7 +403,7 @@ try {
   await shot('studio_failure.png').catch(() => {});
 } finally {
   await context.close().catch(() => {});
-  server.kill('SIGINT');
+  server.child.kill('SIGINT');
   rmSync(profile, { recursive: true, force: true });
   rmSync(workspace, { recursive: true, force: true });
 }

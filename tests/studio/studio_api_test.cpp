@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -287,6 +289,13 @@ TEST(StudioApi, RefusalsNameTheFieldAndChangeNothing) {
              {"term", "hold"},
              {"value", 1e6}}),
        422, "value"},
+      {"a term's points put out of order (a triangle 0.9 5 1.29)",
+       edit({{"controller", "swing_knee"},
+             {"variable", "delta"},
+             {"term", "center"},
+             {"parameter", 1},
+             {"value", 5}}),
+       422, "value"},
       {"an unknown controller", edit({{"controller", "neck"}, {"variable", "delta"}}), 422,
        "controller"},
       {"an unknown variable",
@@ -387,6 +396,119 @@ TEST(StudioApi, ASavedSetLoadsBackWithItsEditsAndWalksTheSame) {
   EXPECT_EQ(controller(opened, "stance_knee").at("inputs").at(0).at("knots").at(1), -0.2);
   EXPECT_EQ(controller(opened, "stance_knee").at("inputs").at(0),
             edited.at("controller").at("inputs").at(0));
+}
+
+// A link planted in the workspace (the set's folder, or a file in it) would let a save write
+// elsewhere: the save is refused naming the link, and nothing outside changes. A file the studio
+// did not write stays.
+TEST(StudioApi, SaveNeverFollowsALinkOutOfTheWorkspaceNorDeletesOthersFiles) {
+  namespace fs = std::filesystem;
+  const auto put = [](const fs::path& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+  };
+  const auto read = [](const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  StudioOptions options = quick("save_links");
+  const fs::path outside = scratch("save_links_outside");
+  put(outside / "unrelated.fll", "Engine: precious\n");
+  put(outside / "swing_knee.fll", "Engine: mine\n");
+  const auto outside_files = [&] {
+    std::vector<std::string> names;
+    for (const fs::directory_entry& e : fs::directory_iterator(outside))
+      names.push_back(e.path().filename().string() + "=" + read(e.path()));
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  const std::vector<std::string> before = outside_files();
+  Studio studio(options);
+
+  // The set's folder a link to a folder outside.
+  fs::create_directory_symlink(outside, options.workspace / "linked");
+  const auto [status, field] = refusal([&] { studio.save({{"name", "linked"}}); });
+  EXPECT_EQ(status, 422);
+  EXPECT_EQ(field, "name");
+  try {
+    studio.save({{"name", "linked"}});
+  } catch (const RequestError& e) {
+    EXPECT_THAT(e.what(), HasSubstr((options.workspace / "linked").string()));
+    EXPECT_THAT(e.what(), HasSubstr("symbolic link"));
+  }
+  EXPECT_EQ(outside_files(), before);
+
+  // A set saved before, then one of its files replaced by a link to a file outside.
+  studio.save({{"name", "mine"}});
+  fs::remove(options.workspace / "mine" / "swing_knee.fll");
+  fs::create_symlink(outside / "swing_knee.fll", options.workspace / "mine" / "swing_knee.fll");
+  try {
+    studio.save({{"name", "mine"}});
+    ADD_FAILURE() << "a save wrote through a link";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.status(), 422);
+    EXPECT_THAT(e.what(), HasSubstr((options.workspace / "mine" / "swing_knee.fll").string()));
+  }
+  EXPECT_EQ(outside_files(), before);
+
+  // A file of one's own beside a saved set's files survives saving over it.
+  fs::remove(options.workspace / "mine" / "swing_knee.fll");
+  put(options.workspace / "mine" / "notes.fll", "Engine: notes\n");
+  studio.save({{"name", "mine"}});
+  EXPECT_EQ(read(options.workspace / "mine" / "notes.fll"), "Engine: notes\n");
+  EXPECT_TRUE(fs::is_regular_file(options.workspace / "mine" / "swing_knee.fll"));
+}
+
+// The history says whether the set has edits not saved; a save over another set saved under
+// the name is refused (409) unless asked to overwrite it, and changes nothing then.
+TEST(StudioApi, UnsavedEditsAreMarkedAndASaveDoesNotReplaceAnotherSetUnasked) {
+  StudioOptions options = quick("unsaved");
+  Studio studio(options);
+  const auto unsaved = [&] { return studio.state().at("history").at("unsaved").get<bool>(); };
+  EXPECT_FALSE(unsaved());
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 30}});
+  EXPECT_TRUE(unsaved());
+  EXPECT_FALSE(studio.save({{"name", "first"}}).at("history").at("unsaved").get<bool>());
+  studio.undo();
+  EXPECT_TRUE(unsaved());
+  studio.redo();
+  EXPECT_FALSE(unsaved());
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 40}});
+  EXPECT_TRUE(unsaved());
+  studio.save({{"name", "first"}});  // saved there by this session: no question
+  studio.open({{"set", "style:heavy"}});
+  EXPECT_FALSE(unsaved());
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 20}});
+  const std::string manifest = [&] {
+    std::ifstream in(options.workspace / "first" / "manifest.json");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  try {
+    studio.save({{"name", "first"}});
+    ADD_FAILURE() << "the heavy set replaced the set saved as 'first' unasked";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.status(), 409);
+    EXPECT_EQ(e.field(), "name");
+    EXPECT_THAT(e.what(), HasSubstr("overwrite"));
+  }
+  std::ifstream in(options.workspace / "first" / "manifest.json");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), manifest);
+  EXPECT_TRUE(unsaved());
+  EXPECT_EQ(refusal([&] {
+              studio.save({{"name", "first"}, {"overwrite", "yes"}});
+            }),
+            std::make_pair(400, std::string("overwrite")));
+  studio.save({{"name", "first"}, {"overwrite", true}});
+  EXPECT_FALSE(unsaved());
+  std::ifstream replaced(options.workspace / "first" / "manifest.json");
+  EXPECT_NE(std::string(std::istreambuf_iterator<char>(replaced), {}), manifest);
+  // The set opened from a saved folder saves back to it.
+  studio.open({{"set", "saved:first"}});
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 25}});
+  EXPECT_NO_THROW(studio.save({{"name", "first"}}));
 }
 
 TEST(StudioApi, OpeningAStyleIsAResetThatCanBeUndone) {

@@ -114,6 +114,17 @@ std::optional<std::string> optional_string(const nlohmann::json& request, std::s
   return as_string(*value, field);
 }
 
+bool optional_flag(const nlohmann::json& request, std::string_view field) {
+  const nlohmann::json* value = find(request, field);
+  if (!value) return false;
+  if (!value->is_boolean()) {
+    const std::string name(field);
+    throw RequestError(400, name,
+                       "'" + name + "' must be true or false, found " + value->type_name());
+  }
+  return value->get<bool>();
+}
+
 bool is_plain_name(std::string_view name) {
   return !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||

@@ -26,6 +26,8 @@ int integer_field(const nlohmann::json& request, std::string_view field, int low
 // The field as a string of at most Limits::kLongestText characters.
 std::string string_field(const nlohmann::json& request, std::string_view field);
 std::optional<std::string> optional_string(const nlohmann::json& request, std::string_view field);
+// The field as true or false; false when it is missing (400 when it is not a boolean).
+bool optional_flag(const nlohmann::json& request, std::string_view field);
 
 // Whether `name` is a name the workspace reads or writes: 1 to 64 letters, digits, '-' or '_'.
 bool is_plain_name(std::string_view name);

@@ -1,13 +1,17 @@
 #include "fuzzygait/studio/server.hpp"
 
 #include <httplib.h>
+#include <openssl/evp.h>
+#include <openssl/sha.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <functional>
 #include <mutex>
+#include <set>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -20,6 +24,11 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kJson = "application/json; charset=utf-8";
+
+// Past the body limit the server reads on and drops this many bytes more, so that its refusal
+// reaches a client that is still sending (closing a socket with unread bytes resets it, and the
+// client may lose the answer); beyond that it stops reading and closes the connection.
+constexpr std::size_t kDrainLimit = 16 * 1024 * 1024;
 
 // Sends bytes as they are, through a content provider: cpp-httplib would compress a body given
 // with set_content of a text type (Brotli at its slowest setting), which on this machine costs
@@ -52,6 +61,20 @@ void send_json(httplib::Response& res, const json& value) {
   send(res, std::make_shared<const std::string>(dump(value)), kJson);
 }
 
+// Sends the JSON and then closes the connection: a content provider that reports failure after
+// writing its bytes makes cpp-httplib end the connection instead of reading the next request
+// from it (for a body left half read).
+void send_json_and_close(httplib::Response& res, const json& value) {
+  auto bytes = std::make_shared<const std::string>(dump(value));
+  res.set_header("Connection", "close");
+  res.set_content_provider(
+      bytes->size(), kJson,
+      [bytes](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+        sink.write(bytes->data() + offset, std::min(length, bytes->size() - offset));
+        return false;
+      });
+}
+
 void refuse(httplib::Response& res, int status, const std::string& field,
             const std::string& message) {
   res.status = status;
@@ -60,6 +83,71 @@ void refuse(httplib::Response& res, int status, const std::string& field,
 
 bool is_loopback(const std::string& host) {
   return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+}
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+// A host as it is written in a Host header: an IPv6 address in brackets.
+std::string host_in_url(const std::string& host) {
+  const bool ipv6 = host.find(':') != std::string::npos && host.front() != '[';
+  return ipv6 ? "[" + host + "]" : host;
+}
+
+// The page's one inline script, its import map, as a Content-Security-Policy source
+// ('sha256-BASE64'), so that no other inline script runs.
+std::string import_map_source() {
+  const detail::Asset* page = detail::find_asset("/index.html");
+  if (!page) return {};
+  const std::string_view html = page->text;
+  const std::string_view open = "<script type=\"importmap\">";
+  const std::size_t start = html.find(open);
+  const std::size_t end = html.find("</script>", start);
+  if (start == std::string_view::npos || end == std::string_view::npos) return {};
+  const std::string_view script = html.substr(start + open.size(), end - start - open.size());
+  unsigned char digest[SHA256_DIGEST_LENGTH];
+  SHA256(reinterpret_cast<const unsigned char*>(script.data()), script.size(), digest);
+  unsigned char base64[4 * ((SHA256_DIGEST_LENGTH + 2) / 3) + 1];
+  EVP_EncodeBlock(base64, digest, SHA256_DIGEST_LENGTH);
+  return " 'sha256-" + std::string(reinterpret_cast<const char*>(base64)) + "'";
+}
+
+// What the page may load and run: its own files and its import map; styles inline too (lil-gui
+// adds its own); images and fonts (lil-gui's) from data: URLs; requests to this server only; no
+// frames around it.
+std::string content_security_policy() {
+  return "default-src 'self'; script-src 'self'" + import_map_source() +
+         "; style-src 'self' 'unsafe-inline'; img-src 'self' data: blob:; font-src 'self' data:; "
+         "connect-src 'self'; "
+         "object-src 'none'; base-uri 'none'; form-action 'self'; frame-ancestors 'none'";
+}
+
+// How reading a POST's body ended.
+enum class BodyRead { kWhole, kTooLarge, kAbandoned, kBroken };
+
+// Reads a POST's body through cpp-httplib's content reader, keeping at most `limit` bytes
+// whatever the transfer encoding: cpp-httplib 0.11 checks set_payload_max_length against a
+// Content-Length only, and would keep a chunked body, or one sent until the connection closes,
+// whole in memory. Past the limit the bytes are read and dropped, up to kDrainLimit.
+BodyRead read_body(const httplib::ContentReader& reader, const httplib::Response& res,
+                   std::size_t limit, std::string& body) {
+  std::size_t dropped = 0;
+  const bool read = reader([&](const char* data, std::size_t size) {
+    if (dropped == 0 && body.size() + size <= limit) {
+      body.append(data, size);
+      return true;
+    }
+    dropped += size;
+    return dropped <= kDrainLimit;
+  });
+  // A Content-Length over the limit: cpp-httplib skipped the body and set 413.
+  if (res.status == 413) return BodyRead::kTooLarge;
+  if (dropped > kDrainLimit) return BodyRead::kAbandoned;
+  if (dropped > 0) return read ? BodyRead::kTooLarge : BodyRead::kAbandoned;
+  return read ? BodyRead::kWhole : BodyRead::kBroken;
 }
 
 }  // namespace
@@ -71,65 +159,133 @@ struct Server::Impl {
   std::mutex studio_mutex;  // one request at a time reads or changes the studio
   int port = 0;
   bool loopback = true;
+  std::set<std::string> host_names;  // what a Host header may name, without the port
+  std::string security_policy = content_security_policy();
   // run() and stop() may race: stop() before run() has started listening must still end it.
   std::atomic<bool> stopping{false};
   std::atomic<int> run_state{0};  // 0 not called, 1 running, 2 returned
 
-  Impl(Studio& s, ServerOptions o) : studio(s), options(std::move(o)) {}
+  Impl(Studio& s, ServerOptions o) : studio(s), options(std::move(o)) {
+    host_names = {"127.0.0.1", "localhost", "[::1]"};
+    if (options.host != "0.0.0.0" && options.host != "::" && !options.host.empty())
+      host_names.insert(lower(host_in_url(options.host)));
+    for (const std::string& name : options.allowed_hosts)
+      host_names.insert(lower(host_in_url(name)));
+  }
 
-  // Host values a browser sends for this server on loopback (DNS rebinding gives other names).
+  // Host values a browser sends for this server: a loopback name or one the server was given,
+  // with its port. DNS rebinding gives another name (the attacker's), whatever address the
+  // server listens on.
   bool own_host(const std::string& host) const {
     const std::string p = ":" + std::to_string(port);
-    return host == "127.0.0.1" + p || host == "localhost" + p || host == "[::1]" + p ||
-           host == options.host + p;
+    if (host.size() <= p.size() || host.compare(host.size() - p.size(), p.size(), p) != 0)
+      return false;
+    return host_names.count(lower(host.substr(0, host.size() - p.size()))) > 0;
+  }
+
+  std::string own_hosts_text() const {
+    std::string text;
+    for (const std::string& name : host_names)
+      text += (text.empty() ? "" : ", ") + name + ":" + std::to_string(port);
+    return text;
   }
 
   // The JSON body of a POST (an empty one reads as {}); throws RequestError when malformed.
-  static json body(const httplib::Request& req) {
-    if (req.body.empty()) return json::object();
+  static json parse_body(const std::string& body) {
+    if (body.empty()) return json::object();
     try {
-      return json::parse(req.body);
+      return json::parse(body);
     } catch (const json::exception& e) {
       throw RequestError(400, "body", std::string("the body is not JSON: ") + e.what());
     }
   }
 
-  // A route answering JSON from a Studio call made under the lock. The time the call took is
-  // sent as Server-Timing (the browser test reads it).
-  httplib::Server::Handler api(std::function<json(const json&)> call) {
-    return [this, call = std::move(call)](const httplib::Request& req, httplib::Response& res) {
-      try {
-        const json request = body(req);
-        json answer;
-        const auto start = std::chrono::steady_clock::now();
-        {
-          const std::lock_guard<std::mutex> lock(studio_mutex);
-          answer = call(request);
-        }
-        const double ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
-        char timing[64];
-        std::snprintf(timing, sizeof timing, "studio;dur=%.2f", ms);
-        res.set_header("Server-Timing", timing);
-        res.set_header("Cache-Control", "no-store");
-        send_json(res, answer);
-      } catch (const RequestError& e) {
-        res.status = e.status();
-        send_json(res, e.to_json());
-      } catch (const std::exception& e) {
-        refuse(res, 500, "", std::string("the studio failed: ") + e.what());
+  // Answers JSON from a Studio call made under the lock. The time the call took is sent as
+  // Server-Timing (the browser test reads it).
+  void answer(const std::function<json(const json&)>& call, const std::string& body,
+              httplib::Response& res) {
+    try {
+      const json request = parse_body(body);
+      json result;
+      const auto start = std::chrono::steady_clock::now();
+      {
+        const std::lock_guard<std::mutex> lock(studio_mutex);
+        result = call(request);
       }
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
+      char timing[64];
+      std::snprintf(timing, sizeof timing, "studio;dur=%.2f", ms);
+      res.set_header("Server-Timing", timing);
+      res.set_header("Cache-Control", "no-store");
+      send_json(res, result);
+    } catch (const RequestError& e) {
+      res.status = e.status();
+      send_json(res, e.to_json());
+    } catch (const std::exception& e) {
+      refuse(res, 500, "", std::string("the studio failed: ") + e.what());
+    }
+  }
+
+  // A GET route answering JSON from a Studio call.
+  httplib::Server::Handler get(std::function<json(const json&)> call) {
+    return [this, call = std::move(call)](const httplib::Request&, httplib::Response& res) {
+      answer(call, "", res);
     };
   }
 
-  // Host, path and POST checks before any route; Handled when refused.
+  // A POST route answering JSON from a Studio call with the request's body, read within the
+  // limit (read_body); `call` null answers that there is no such route.
+  httplib::Server::HandlerWithContentReader post(std::function<json(const json&)> call) {
+    return [this, call = std::move(call)](const httplib::Request& req, httplib::Response& res,
+                                          const httplib::ContentReader& reader) {
+      std::string body;
+      switch (read_body(reader, res, options.max_body, body)) {
+        case BodyRead::kWhole:
+          break;
+        case BodyRead::kTooLarge:
+          res.status = 413;
+          send_json(res, too_large().to_json());
+          return;
+        case BodyRead::kAbandoned:
+          res.status = 413;
+          send_json_and_close(res, too_large().to_json());
+          return;
+        case BodyRead::kBroken:
+          res.status = 400;
+          send_json_and_close(res, RequestError(400, "body",
+                                                "the body could not be read "
+                                                "(a malformed chunk?)")
+                                       .to_json());
+          return;
+      }
+      if (!call) {
+        refuse(res, 404, "path", "no route for POST " + req.path);
+        return;
+      }
+      answer(call, body, res);
+    };
+  }
+
+  RequestError too_large() const {
+    return RequestError(
+        413, "body",
+        "the request body is larger than " + std::to_string(options.max_body) + " bytes");
+  }
+
+  // Method, Host, path, Origin and POST checks before any route (and before a body is read);
+  // Handled when refused.
   httplib::Server::HandlerResponse screen(const httplib::Request& req, httplib::Response& res) {
     using Response = httplib::Server::HandlerResponse;
-    if (loopback && !own_host(req.get_header_value("Host"))) {
-      refuse(res, 403, "Host",
-             "this studio answers requests for 127.0.0.1:" + std::to_string(port) +
-                 " or localhost:" + std::to_string(port) + " only");
+    // Only these: cpp-httplib would read another method's body whole, with no limit.
+    if (req.method != "GET" && req.method != "HEAD" && req.method != "POST") {
+      refuse(res, 405, "method", "the studio answers GET and POST only, not " + req.method);
+      res.set_header("Allow", "GET, HEAD, POST");
+      return Response::Handled;
+    }
+    if (!own_host(req.get_header_value("Host"))) {
+      refuse(res, 403, "Host", "this studio answers requests for " + own_hosts_text() + " only");
       return Response::Handled;
     }
     if (req.path.find("..") != std::string::npos) {
@@ -138,12 +294,7 @@ struct Server::Impl {
     }
     if (req.method == "POST") {
       const std::string origin = req.get_header_value("Origin");
-      if (loopback && !origin.empty() && origin.rfind("http://", 0) == 0 &&
-          !own_host(origin.substr(7))) {
-        refuse(res, 403, "Origin", "requests from pages of other sites are refused");
-        return Response::Handled;
-      }
-      if (!origin.empty() && origin.rfind("http://", 0) != 0) {
+      if (!origin.empty() && (origin.rfind("http://", 0) != 0 || !own_host(origin.substr(7)))) {
         refuse(res, 403, "Origin", "requests from pages of other sites are refused");
         return Response::Handled;
       }
@@ -158,16 +309,26 @@ struct Server::Impl {
     return Response::Unhandled;
   }
 
+  // Headers on every answer, refusals included.
+  void protect(httplib::Response& res) const {
+    res.set_header("Content-Security-Policy", security_policy);
+    res.set_header("X-Frame-Options", "DENY");
+    res.set_header("X-Content-Type-Options", "nosniff");
+    res.set_header("Referrer-Policy", "no-referrer");
+  }
+
   void routes() {
-    http.Get("/api/state", api([this](const json&) { return studio.state(); }));
-    http.Get("/api/walk", api([this](const json&) { return studio.walk(); }));
-    http.Post("/api/edit", api([this](const json& r) { return studio.edit(r); }));
-    http.Post("/api/settings", api([this](const json& r) { return studio.change_settings(r); }));
-    http.Post("/api/undo", api([this](const json&) { return studio.undo(); }));
-    http.Post("/api/redo", api([this](const json&) { return studio.redo(); }));
-    http.Post("/api/open", api([this](const json& r) { return studio.open(r); }));
-    http.Post("/api/save", api([this](const json& r) { return studio.save(r); }));
-    http.Post("/api/compare", api([this](const json& r) { return studio.compare(r); }));
+    http.Get("/api/state", get([this](const json&) { return studio.state(); }));
+    http.Get("/api/walk", get([this](const json&) { return studio.walk(); }));
+    http.Post("/api/edit", post([this](const json& r) { return studio.edit(r); }));
+    http.Post("/api/settings", post([this](const json& r) { return studio.change_settings(r); }));
+    http.Post("/api/undo", post([this](const json&) { return studio.undo(); }));
+    http.Post("/api/redo", post([this](const json&) { return studio.redo(); }));
+    http.Post("/api/open", post([this](const json& r) { return studio.open(r); }));
+    http.Post("/api/save", post([this](const json& r) { return studio.save(r); }));
+    http.Post("/api/compare", post([this](const json& r) { return studio.compare(r); }));
+    // Any other POST: its body read within the limit too, then a 404.
+    http.Post(".*", post(nullptr));
     http.Get("/api/download/([^/]+)", [this](const httplib::Request& req, httplib::Response& res) {
       try {
         Download d;
@@ -209,6 +370,9 @@ Server::Server(Studio& studio, const ServerOptions& options)
   if (options.max_body < 1024 || options.max_body > 64 * 1024 * 1024) {
     throw std::invalid_argument("max_body must be between 1 KiB and 64 MiB");
   }
+  if (options.idle_seconds < 1 || options.idle_seconds > 600) {
+    throw std::invalid_argument("idle_seconds must be between 1 and 600");
+  }
   s.loopback = is_loopback(options.host);
   const auto threads = static_cast<std::size_t>(options.threads);
   s.http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
@@ -222,11 +386,15 @@ Server::Server(Studio& studio, const ServerOptions& options)
   s.http.set_tcp_nodelay(true);
   s.http.set_payload_max_length(options.max_body);
   s.http.set_keep_alive_max_count(1000);
-  s.http.set_keep_alive_timeout(5);
-  s.http.set_read_timeout(5, 0);
+  // A connection that sends nothing for idle_seconds is closed, so that idle or half-open
+  // connections hold a thread of the pool for that long at most.
+  s.http.set_keep_alive_timeout(options.idle_seconds);
+  s.http.set_read_timeout(options.idle_seconds, 0);
   s.http.set_write_timeout(5, 0);
   s.http.set_pre_routing_handler(
       [&s](const httplib::Request& req, httplib::Response& res) { return s.screen(req, res); });
+  s.http.set_post_routing_handler(
+      [&s](const httplib::Request&, httplib::Response& res) { s.protect(res); });
   // Statuses cpp-httplib sets itself (413, a 404 for a method no route takes, 400 for a request
   // it cannot parse) get a JSON body too.
   s.http.set_error_handler(
@@ -272,10 +440,16 @@ int Server::port() const {
   return impl_->port;
 }
 
+bool Server::loopback() const {
+  return impl_->loopback;
+}
+
 std::string Server::address() const {
   const std::string& host = impl_->options.host;
-  const bool ipv6 = host.find(':') != std::string::npos;
-  return "http://" + (ipv6 ? "[" + host + "]" : host) + ":" + std::to_string(impl_->port) + "/";
+  // Listening on every address, the page opens on loopback.
+  const bool any = host == "0.0.0.0" || host == "::";
+  return "http://" + (any ? std::string("127.0.0.1") : host_in_url(host)) + ":" +
+         std::to_string(impl_->port) + "/";
 }
 
 bool Server::run() {

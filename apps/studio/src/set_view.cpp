@@ -417,6 +417,9 @@ Edited apply_edit(const gait::ControllerSet& set, const json& request) {
       edited.before = term.parameters[i];
       edited.after = term.parameters[i] = number_field(request, "value");
       edited.subject = variable + " " + term.name + " " + fuzzy::parameter_label(term, i);
+      if (const std::string disorder = fuzzy::points_out_of_order(term); !disorder.empty()) {
+        throw RequestError(422, "value", place.id + ", '" + variable + "': " + disorder);
+      }
     } else {
       if (term.kind != fuzzy::TermKind::Constant) {
         throw RequestError(422, "term",

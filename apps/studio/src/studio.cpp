@@ -1,8 +1,13 @@
 #include "fuzzygait/studio/studio.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -94,6 +99,7 @@ struct Studio::Session {
     gait::ControllerSet set;  // the set before the step
     std::string label;        // what the step did
     Opened opened;            // the set opened before the step
+    std::uint64_t version;    // the set's version (Session::version)
   };
   struct Compared {
     std::string id;
@@ -118,6 +124,12 @@ struct Studio::Session {
   std::optional<detail::Walked> walked;
   std::optional<json> walk_view;
   std::optional<Compared> compared;
+  // Each set the session holds has a version, new with every change; the version last opened
+  // or saved is the one without unsaved edits (history's "unsaved").
+  std::uint64_t version = 0;
+  std::uint64_t versions = 0;
+  std::uint64_t saved_version = 0;
+  std::string saved_name;  // where the set was opened from or last saved since ("" for none)
 
   std::vector<std::string> offered_terrains() const {
     std::vector<std::string> specs;
@@ -188,7 +200,8 @@ struct Studio::Session {
     return {{"undo", undo.size()},
             {"redo", redo.size()},
             {"undo_label", undo.empty() ? "" : undo.back().label},
-            {"redo_label", redo.empty() ? "" : redo.back().label}};
+            {"redo_label", redo.empty() ? "" : redo.back().label},
+            {"unsaved", version != saved_version}};
   }
 
   json settings_json() const {
@@ -235,11 +248,12 @@ struct Studio::Session {
 
   // Puts `set` in place of the current one as one step of the history.
   void replace(gait::ControllerSet set, std::string label) {
-    undo.push_back({std::move(current), std::move(label), opened});
+    undo.push_back({std::move(current), std::move(label), opened, version});
     if (undo.size() > Limits::kHistory) undo.erase(undo.begin());
     redo.clear();
     gesture.clear();
     current = std::move(set);
+    version = ++versions;
     forget_walks();
   }
 
@@ -248,8 +262,9 @@ struct Studio::Session {
   json step_through(std::vector<Step>& from, std::vector<Step>& to) {
     Step step = std::move(from.back());
     from.pop_back();
-    to.push_back({std::move(current), step.label, opened});
+    to.push_back({std::move(current), step.label, opened, version});
     current = std::move(step.set);
+    version = step.version;
     set_opened(std::move(step.opened));
     gesture.clear();
     fit_step();
@@ -366,6 +381,7 @@ json Studio::edit(const json& request) {
     // The same drag: one step of the history from where the drag began.
     s.undo.back().label = edited.label(s.gesture_from);
     s.current = std::move(edited.set);
+    s.version = ++s.versions;
     s.redo.clear();
     s.forget_walks();
   } else {
@@ -488,6 +504,9 @@ json Studio::open(const json& request) {
   auto [set, label] = s.load(id, "set");
   auto opened = std::make_shared<const gait::ControllerSet>(set);
   s.replace(std::move(set), "open " + label);
+  s.saved_version = s.version;  // a set as opened has no unsaved edits
+  // The set saves back where it was opened from without asking; elsewhere only when new.
+  s.saved_name = id.rfind("saved:", 0) == 0 ? id.substr(6) : "";
   s.set_opened({id, label, std::move(opened)});
   s.fit_step();
   s.forget_walks();
@@ -499,10 +518,60 @@ json Studio::open(const json& request) {
           {"compare", s.compared_walk()}};
 }
 
+namespace {
+
+// The .fll files a saved set's manifest names (the studio's own earlier save of it): the only
+// files a save may remove.
+std::set<std::string> manifest_files(const std::filesystem::path& manifest) {
+  std::set<std::string> files;
+  std::ifstream in(manifest);
+  const json m = json::parse(in, nullptr, false);
+  const std::function<void(const json&)> collect = [&](const json& value) {
+    if (value.is_string()) {
+      const std::string name = value.get<std::string>();
+      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".fll") == 0 &&
+          name.find('/') == std::string::npos && name != ".." && name != ".")
+        files.insert(name);
+    } else if (value.is_structured()) {
+      for (const json& item : value)
+        collect(item);
+    }
+  };
+  if (!m.is_discarded()) collect(m);
+  return files;
+}
+
+// Refuses a save whose folder is a symbolic link, holds one, or is not a folder of the workspace:
+// a save writes only into WORKSPACE/NAME itself.
+void check_save_folder(const std::filesystem::path& workspace,
+                       const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  auto refuse = [](const fs::path& path, const std::string& why) {
+    throw RequestError(422, "name", "cannot save to " + path.string() + ": " + why);
+  };
+  std::error_code error;
+  const fs::file_status status = fs::symlink_status(folder, error);
+  if (!fs::exists(status)) return;
+  if (fs::is_symlink(status))
+    refuse(folder, "it is a symbolic link (a save writes only into the workspace)");
+  if (!fs::is_directory(status)) refuse(folder, "it is not a folder");
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
+    if (entry.is_symlink(error))
+      refuse(entry.path(), "it is a symbolic link (a save writes only into the workspace)");
+  }
+  const fs::path real_workspace = fs::weakly_canonical(workspace, error);
+  const fs::path real_folder = fs::weakly_canonical(folder, error);
+  if (error || real_folder.parent_path() != real_workspace)
+    refuse(folder, "it is not inside the workspace " + real_workspace.string());
+}
+
+}  // namespace
+
 json Studio::save(const json& request) {
   Session& s = *session_;
-  detail::check_fields(request, {"name"});
+  detail::check_fields(request, {"name", "overwrite"});
   const std::string name = detail::string_field(request, "name");
+  const bool overwrite = detail::optional_flag(request, "overwrite");
   if (!detail::is_plain_name(name)) {
     throw RequestError(422, "name",
                        "a set's name is 1 to 64 letters, digits, '-' or '_' (it names a folder "
@@ -510,19 +579,40 @@ json Studio::save(const json& request) {
                            name + "'");
   }
   const std::filesystem::path folder = s.options.workspace / name;
+  check_save_folder(s.options.workspace, folder);
+  // Another set saved under the name is replaced only when asked: not the set opened from there
+  // or saved there since it was opened.
+  std::error_code exists_error;
+  if (!overwrite && std::filesystem::exists(folder / "manifest.json", exists_error) &&
+      name != s.saved_name) {
+    throw RequestError(409, "name",
+                       "a set is saved as '" + name + "' already (" + folder.string() +
+                           "): save with \"overwrite\": true to replace it");
+  }
   gait::ControllerSet copy = s.current;
   copy.name = name;
   try {
-    // A set saved there before may have had terrain files this one has not.
-    std::error_code error;
-    for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
-      if (entry.path().extension() == ".fll") std::filesystem::remove(entry.path());
-    }
+    // A set saved there before may have had terrain files this one has not: those its manifest
+    // names go; other files stay.
+    const std::set<std::string> before = manifest_files(folder / "manifest.json");
     io::save_controller_set(copy, folder);
+    const std::set<std::string> now = manifest_files(folder / "manifest.json");
+    for (const std::string& file : before) {
+      std::error_code error;
+      const std::filesystem::path path = folder / file;
+      if (!now.count(file) &&
+          std::filesystem::is_regular_file(std::filesystem::symlink_status(path, error)))
+        std::filesystem::remove(path, error);
+    }
   } catch (const std::exception& e) {
     throw RequestError(500, "name", "cannot save to " + folder.string() + ": " + e.what());
   }
-  return {{"saved", "saved:" + name}, {"folder", folder.string()}, {"sets", s.sets()}};
+  s.saved_version = s.version;
+  s.saved_name = name;
+  return {{"saved", "saved:" + name},
+          {"folder", folder.string()},
+          {"sets", s.sets()},
+          {"history", s.history()}};
 }
 
 json Studio::compare(const json& request) {

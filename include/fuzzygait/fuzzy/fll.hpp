@@ -27,6 +27,10 @@ struct FllOptions {
   // heights, the default, rule weights, thresholds). fuzzylite reads them, and so does read_fll
   // by default; a joint controller cannot use them (a NaN speed, a term that covers nothing).
   bool finite_numbers = false;
+  // Refuse a Triangle, Trapezoid, PiShape or Rectangle whose points are out of order
+  // (points_out_of_order), naming the line and the term. fuzzylite reads them, and so does
+  // read_fll by default; `fuzzygait fuzzy check` does not.
+  bool ordered_points = false;
 };
 
 // Parses FLL text. `source` names the text in error messages (usually the file path).

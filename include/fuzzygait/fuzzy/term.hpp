@@ -66,6 +66,12 @@ struct Term {
 // How messages name parameter i of `term`: "'vertexB'" for shapes of a fixed parameter count,
 // its position ("4") for Discrete and Linear.
 std::string parameter_label(const Term& term, std::size_t i);
+// Empty when the points of a Triangle, Trapezoid, PiShape or Rectangle are in order (each at or
+// after the one before); otherwise a sentence naming the term and the first pair out of order
+// ("term 'center' (Triangle): 'vertexB' 5 is past 'vertexC' 1.29; its points must be in
+// order"). fuzzylite reads such a term, which is then not the shape its name says (a triangle
+// 0.9 5 1.29 never reaches 0.1). Other shapes are always in order here.
+std::string points_out_of_order(const Term& term);
 // The constants written in a Function term's formula, in order; none for other shapes.
 std::vector<double> formula_constants(const Term& term);
 

@@ -180,6 +180,11 @@ class Reader {
              "term '" + term_name + "' parameter " + parameter_label(made, i));
     }
     finite(e, made.height, "term '" + term_name + "' height");
+    if (options_.ordered_points) {
+      if (const std::string disorder = points_out_of_order(made); !disorder.empty()) {
+        fail(e.line, disorder + " (in '" + variable + "')");
+      }
+    }
     for (const double constant : formula_constants(made))
       finite(e, constant, "a constant in the formula of term '" + term_name + "'");
     return made;

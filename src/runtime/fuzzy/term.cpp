@@ -91,6 +91,24 @@ std::string parameter_label(const Term& term, std::size_t i) {
              : std::to_string(i + 1);
 }
 
+std::string points_out_of_order(const Term& term) {
+  // How many leading parameters are points along the input, in order.
+  const TermKind k = term.kind;
+  const std::size_t count = k == TermKind::Rectangle                               ? 2
+                            : k == TermKind::Triangle                              ? 3
+                            : (k == TermKind::Trapezoid || k == TermKind::PiShape) ? 4
+                                                                                   : 0;
+  for (std::size_t i = 1; i < count && i < term.parameters.size(); ++i) {
+    if (term.parameters[i] < term.parameters[i - 1]) {
+      return "term '" + term.name + "' (" + std::string(shape_info(term.kind).name) +
+             "): " + parameter_label(term, i - 1) + " " + format_scalar(term.parameters[i - 1]) +
+             " is past " + parameter_label(term, i) + " " + format_scalar(term.parameters[i]) +
+             "; its points must be in order";
+    }
+  }
+  return {};
+}
+
 std::vector<double> formula_constants(const Term& term) {
   std::vector<double> constants;
   if (term.kind != TermKind::Function) return constants;

@@ -9,14 +9,18 @@
 //   GET  /api/download/FILE     Studio::download(FILE), as an attachment
 //
 // Refusals answer with a 4xx status and {"error", "field", "status"}: a path with '..' (400), an
-// unknown path (404), a POST whose body is not JSON (400) or not of Content-Type
-// application/json (415), a body over the size limit (413), a Host or Origin header that is not
-// the server's own while it listens on loopback (403: another site's page cannot drive the
-// studio), and every RequestError.
+// unknown path (404), a method other than GET, HEAD and POST (405), a POST whose body is not JSON
+// (400) or not of Content-Type application/json (415), a body over the size limit in any transfer
+// encoding (413; the rest of it is read and dropped, or the connection closed), a Host header that
+// does not name this server or an Origin of another site, on any address it listens on (403:
+// another site's page cannot drive the studio, DNS rebinding included), and every RequestError.
+// Every answer carries a Content-Security-Policy (frame-ancestors 'none'), X-Frame-Options: DENY
+// and X-Content-Type-Options: nosniff.
 #pragma once
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fuzzygait/studio/studio.hpp"
 
@@ -25,8 +29,13 @@ namespace fuzzygait::studio {
 struct ServerOptions {
   std::string host = "127.0.0.1";    // loopback: only this machine reaches it
   int port = 8642;                   // 0: any free port (port() tells which)
-  std::size_t max_body = 64 * 1024;  // bytes of a request body
-  int threads = 16;                  // connections served at once
+  std::size_t max_body = 64 * 1024;  // bytes of a request body, however it is sent
+  int threads = 64;                  // connections served at once
+  int idle_seconds = 2;              // a connection that sends nothing for this long is closed
+  // Names a browser may reach the server by besides 127.0.0.1, localhost, [::1] and `host` (the
+  // machine's own address or name when `host` is 0.0.0.0); a request's Host must be one of them
+  // with the port, and an Origin http:// one of them with the port.
+  std::vector<std::string> allowed_hosts;
 };
 
 class Server {
@@ -39,7 +48,9 @@ class Server {
   Server& operator=(const Server&) = delete;
 
   int port() const;
-  // "http://127.0.0.1:PORT/"
+  // Whether it listens on a loopback address only (127.x.x.x, ::1, localhost).
+  bool loopback() const;
+  // "http://127.0.0.1:PORT/" (the host it listens on; 127.0.0.1 for 0.0.0.0 and ::)
   std::string address() const;
   // Serves until stop() is called (from another thread). Returns false when listening failed.
   bool run();
