@@ -506,11 +506,15 @@ void run_crowd_sizes(const CrowdOptions& c) {
       const double golden = 0.6180339887498949 * static_cast<double>(i);
       characters[i].start.warm_up = c.spread * (golden - std::floor(golden));
     }
+    std::vector<std::size_t> walked;  // worker counts of this size's crowds so far
     for (const std::size_t threads : thread_counts) {
       gait::CrowdOptions crowd_options;
       crowd_options.threads = threads;
       const std::size_t before = heap_in_use();
       gait::Crowd crowd(set, ground, characters, crowd_options);
+      // A crowd too small for more workers than an earlier one walks as that one did.
+      if (std::find(walked.begin(), walked.end(), crowd.worker_count()) != walked.end()) continue;
+      walked.push_back(crowd.worker_count());
       const double bytes = static_cast<double>(heap_in_use() - before) / static_cast<double>(size);
       const long frames =
           calibrate(1, c.min_seconds, [&](long n) { return seconds_for(crowd, n); });

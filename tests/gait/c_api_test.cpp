@@ -123,15 +123,16 @@ TEST(CApi, ACrowdWalksAsTheCppCrowdOnAGroundOfItsOwn) {
 }
 
 // On the crowd's own threads and on a game's task system (here one that runs every range on the
-// calling thread, counting them), 70 characters walk as the C++ crowd on one thread.
+// calling thread, counting them), 300 characters (ten blocks, in three runs) walk as the C++
+// crowd on one thread.
 TEST(CApi, ACrowdOnThreadsOrTheGamesTasksWalksAsOnOne) {
   fg_error error;
   fg_set* set = fg_set_builtin("default", &error);
   ASSERT_NE(set, nullptr) << error.message;
-  std::vector<fg_walker_def> defs(70, fg_walker_def_default());
-  std::vector<gait::WalkerOptions> options(70);
+  std::vector<fg_walker_def> defs(300, fg_walker_def_default());
+  std::vector<gait::WalkerOptions> options(300);
   for (std::size_t i = 0; i < defs.size(); ++i) {
-    defs[i].step_length = options[i].step_length = 0.5 + 0.005 * static_cast<double>(i);
+    defs[i].step_length = options[i].step_length = 0.5 + 0.001 * static_cast<double>(i);
   }
   struct Counted {
     std::size_t ranges = 0;
@@ -164,7 +165,7 @@ TEST(CApi, ACrowdOnThreadsOrTheGamesTasksWalksAsOnOne) {
     for (fg_crowd* crowd : crowds)
       ASSERT_EQ(fg_crowd_advance(crowd, 1.0 / 60.0), 1);
   }
-  EXPECT_EQ(counted.ranges, 120u * 3u);  // three blocks a frame
+  EXPECT_EQ(counted.ranges, 120u * 3u);  // three runs of blocks a frame
   for (fg_crowd* crowd : crowds) {
     for (std::size_t i = 0; i < defs.size(); ++i) {
       fg_pose pose;

@@ -66,7 +66,7 @@ def test_each_character_walks_as_a_lone_walker_bit_for_bit():
 
 
 def test_a_crowd_on_two_threads_walks_the_same_bits():
-    people = [{"step_length": 0.5 + 0.004 * i} for i in range(80)]  # three blocks
+    people = [{"step_length": 0.5 + 0.001 * i} for i in range(300)]  # three runs of blocks
     one = fg.Crowd("default", people)
     two = fg.Crowd("default", people, threads=2)
     assert one.workers == 1 and two.workers == 2

@@ -13,7 +13,8 @@
 namespace fuzzygait::gait {
 namespace {
 constexpr std::size_t kLanesPerSlot = 2 * Crowd::kBlock;
-}
+constexpr std::size_t kBlocksPerRange = 4;  // the fewest blocks a worker takes at once
+}  // namespace
 using detail::StepData;
 using detail::WalkerStages;
 
@@ -40,8 +41,9 @@ Crowd::Crowd(const ControllerSet& controllers, const terrain::Terrain& terrain,
     const std::size_t threads = options.threads > 0
                                     ? options.threads
                                     : std::max<std::size_t>(std::thread::hardware_concurrency(), 1);
-    // No more threads than blocks: a thread without a block would only wait.
-    const std::size_t blocks = (characters.size() + kBlock - 1) / kBlock;
+    // No more threads than runs of blocks: a thread without one would only wait.
+    const std::size_t blocks =
+        (characters.size() + kBlock * kBlocksPerRange - 1) / (kBlock * kBlocksPerRange);
     pool_ = std::make_unique<WorkerPool>(
         std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(blocks, 1)));
     tasks_ = pool_->tasks();
@@ -103,10 +105,15 @@ bool Crowd::advance(double dt) noexcept {
   sub_steps_ = detail::sub_steps(dt, time_step_);
   const std::size_t blocks = (walkers_.size() + kBlock - 1) / kBlock;
   if (blocks == 0 || sub_steps_.count == 0) return true;
+  // Runs of neighbouring blocks to a worker, never single blocks: two cores stepping blocks side
+  // by side in memory stepped 4096 characters 1.25 times as fast as one, runs of four blocks or
+  // more 1.8-1.9 times (the walkers a range steps are one stretch of memory). Eight runs a worker
+  // keep the load even.
+  const std::size_t range = std::max(kBlocksPerRange, blocks / (8 * tasks_.worker_count));
   if (pool_) {
-    pool_->run(&Crowd::step_blocks, blocks, 1, this);
+    pool_->run(&Crowd::step_blocks, blocks, range, this);
   } else {
-    void* task = tasks_.enqueue(&Crowd::step_blocks, blocks, 1, this, tasks_.user_context);
+    void* task = tasks_.enqueue(&Crowd::step_blocks, blocks, range, this, tasks_.user_context);
     tasks_.finish(task, tasks_.user_context);
   }
   return true;
