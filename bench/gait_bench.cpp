@@ -462,6 +462,8 @@ struct CrowdOptions {
   int repetitions = 3;
   double spread = 1.1;  // characters' warm-ups spread over this many seconds (a gait cycle)
   double time_step = gait::WalkerOptions{}.time_step;
+  // Each frame's events are read and cleared (a step makes at most four a leg): a few suffice.
+  std::size_t events = 8;
 };
 
 // Bytes the allocator has handed out and not had back (glibc's mallinfo2).
@@ -475,6 +477,7 @@ void run_crowd_sizes(const CrowdOptions& c) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   gait::WalkerOptions options;
   options.time_step = c.time_step;
+  options.event_capacity = c.events;
   const double steps_in_frame = steps_per_frame(options);
   std::vector<std::size_t> thread_counts = c.threads;
   const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
@@ -483,10 +486,11 @@ void run_crowd_sizes(const CrowdOptions& c) {
   }
   std::printf(
       "fuzzygait-bench crowd: the default set, flat ground, time step %.6g s, frames of 1/60 s "
-      "(%g steps); characters' phases spread over %.2f s; %zu hardware threads; median of %d "
-      "repetitions of >= %.2f s; fuzzylite %s\n",
-      options.time_step, steps_in_frame, c.spread, static_cast<std::size_t>(cores), c.repetitions,
-      c.min_seconds, fl::fuzzylite::version().c_str());
+      "(%g steps), events read and cleared every frame, %zu kept a character; characters' phases "
+      "spread over %.2f s; %zu hardware threads; median of %d repetitions of >= %.2f s; "
+      "fuzzylite %s\n",
+      options.time_step, steps_in_frame, c.events, c.spread, static_cast<std::size_t>(cores),
+      c.repetitions, c.min_seconds, fl::fuzzylite::version().c_str());
   FuzzyliteControllers fuzzylite(set);
   const gait::detail::ControllerBackend fuzzylite_backend{
       [&fuzzylite](int slot, const gait::MetricValues& m) { return fuzzylite.evaluate(slot, m); }};
@@ -568,6 +572,12 @@ void add_crowd_command(CLI::App& app) {
                    "The characters' time step, s (level walks keep the contact bounds up to "
                    "1/90 s: tests/gait/time_step_test.cpp)")
       ->check(CLI::Range(1e-5, 0.05))
+      ->capture_default_str();
+  crowd
+      ->add_option("--events", options->events,
+                   "Contact events each character keeps between clears (WalkerOptions::"
+                   "event_capacity; 32 bytes each)")
+      ->check(CLI::Range(std::size_t{0}, gait::Walker::kMostEvents))
       ->capture_default_str();
   crowd->callback([options]() { run_crowd_sizes(*options); });
 }

@@ -90,6 +90,7 @@ gait::WalkerOptions walker_options(const gait::ControllerSet& set, const py::dic
                                    const std::string& who) {
   std::optional<double> step, speed, stature, time_step, warm_up;
   std::optional<std::uint64_t> seed;
+  std::optional<std::size_t> event_capacity;
   py::dict segments;
   for (const auto& [key, value] : given) {
     const std::string k = py::str(key);
@@ -108,10 +109,12 @@ gait::WalkerOptions walker_options(const gait::ControllerSet& set, const py::dic
       warm_up = option<double>(value, who, k, "a number");
     } else if (k == "seed") {
       seed = option<std::uint64_t>(value, who, k, "a whole number from 0 to 2**64 - 1");
+    } else if (k == "event_capacity") {
+      event_capacity = option<std::size_t>(value, who, k, "a whole number from 0 to 4096");
     } else {
       throw std::invalid_argument(who + "unknown option '" + k +
                                   "' (step_length, speed, stature, segments, time_step, seed, "
-                                  "warm_up)");
+                                  "warm_up, event_capacity)");
     }
   }
   if (step && speed) {
@@ -134,6 +137,7 @@ gait::WalkerOptions walker_options(const gait::ControllerSet& set, const py::dic
   o.speed = speed.value_or(0.0);
   o.time_step = time_step.value_or(o.time_step);
   o.start.warm_up = warm_up.value_or(o.start.warm_up);
+  o.event_capacity = event_capacity.value_or(o.event_capacity);
   if (seed) {
     o.start.random = true;
     o.start.seed = *seed;
@@ -329,15 +333,16 @@ void bind_sets_and_ground(py::module_& m) {
 
 void bind_walker(py::module_& m) {
   py::class_<Walker>(m, "Walker", "One character walking.")
-      .def(py::init([](const py::object& set, const py::object& ground, const py::kwargs& options) {
-             SetPtr s = to_set(set);
-             GroundPtr g = to_ground(ground);
-             const gait::WalkerOptions o = walker_options(*s, options, "");
-             return std::unique_ptr<Walker>(new Walker{s, g, gait::Walker(*s, o, *g)});
-           }),
-           py::arg("set") = "default", py::arg("ground") = py::none(),
-           "Options: step_length (m) or speed (m/s), stature (m) or segments (dict), time_step "
-           "(s), seed (a random start pose), warm_up (s).")
+      .def(
+          py::init([](const py::object& set, const py::object& ground, const py::kwargs& options) {
+            SetPtr s = to_set(set);
+            GroundPtr g = to_ground(ground);
+            const gait::WalkerOptions o = walker_options(*s, options, "");
+            return std::unique_ptr<Walker>(new Walker{s, g, gait::Walker(*s, o, *g)});
+          }),
+          py::arg("set") = "default", py::arg("ground") = py::none(),
+          "Options: step_length (m) or speed (m/s), stature (m) or segments (dict), time_step "
+          "(s), seed (a random start pose), warm_up (s), event_capacity (events kept, default 64).")
       .def(
           "advance", [](Walker& w, double dt) { return w.walker.advance(dt); }, py::arg("dt"))
       .def(

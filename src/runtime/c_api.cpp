@@ -77,6 +77,7 @@ gait::WalkerOptions options_of(const fg_walker_def& def) {
   o.time_step = def.time_step;
   o.start.random = def.random_start != 0;
   o.start.seed = def.start_seed;
+  o.event_capacity = 0;  // the C face reads no events: no room kept for them
   return o;
 }
 

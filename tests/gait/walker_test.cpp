@@ -191,6 +191,42 @@ TEST(Walker, BadInputGetsClearErrors) {
   }
 }
 
+// A walker keeps its last event_capacity events, the same as the default keeps, and none at 0.
+TEST(Walker, KeepsItsLastEventsUpToItsCapacity) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  gait::WalkerOptions o;
+  gait::Walker all(default_set(), o, ground);
+  o.event_capacity = 5;
+  gait::Walker five(default_set(), o, ground);
+  o.event_capacity = 0;
+  gait::Walker none(default_set(), o, ground);
+  for (gait::Walker* w : {&all, &five, &none})
+    w->advance(3.0);  // about 24 events
+  ASSERT_GT(all.events().size(), 5u);
+  ASSERT_EQ(five.events().size(), 5u);
+  EXPECT_TRUE(none.events().empty());
+  const std::size_t skip = all.events().size() - 5;
+  for (std::size_t i = 0; i < 5; ++i) {
+    const gait::EventRecord& a = all.events()[skip + i];
+    const gait::EventRecord& b = five.events()[i];
+    EXPECT_EQ(a.time, b.time);
+    EXPECT_EQ(a.event, b.event);
+    EXPECT_EQ(a.side, b.side);
+    EXPECT_EQ(a.where.x, b.where.x);
+  }
+  // The walks themselves are the same bits.
+  EXPECT_EQ(all.state().pelvis.x, none.state().pelvis.x);
+  EXPECT_EQ(all.state().legs[0].angles.knee, five.state().legs[0].angles.knee);
+  o.event_capacity = gait::Walker::kMostEvents + 1;
+  try {
+    gait::Walker w(default_set(), o, ground);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("event capacity must be at most 4096"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Walker, AdvancingAllocatesNothing) {
   const terrain::Terrain ground = terrain::Terrain::flat();
   gait::Walker w = make_walker(ground);

@@ -120,6 +120,22 @@ def test_a_walker_walks_by_speed_and_its_commands_clamp():
     assert not w.advance(-1.0)
 
 
+def test_a_walker_keeps_its_last_events_up_to_its_capacity():
+    every, two, none = (fg.Walker(event_capacity=n) for n in (64, 2, 0))
+    for w in (every, two, none):
+        w.advance(2.0)
+    assert len(every.events()) > 2
+    assert [(e["time"], e["event"], e["side"]) for e in two.events()] == [
+        (e["time"], e["event"], e["side"]) for e in every.events()[-2:]
+    ]
+    assert none.events() == []
+    assert np.array_equal(none.angles, every.angles)
+    with pytest.raises(ValueError, match="event capacity must be at most 4096"):
+        fg.Walker(event_capacity=5000)
+    with pytest.raises(TypeError, match="event_capacity must be a whole number"):
+        fg.Walker(event_capacity=-1)
+
+
 def test_slopes_and_stairs_are_walked_from_a_spec_or_points():
     w = fg.Walker(ground="slope:10")
     w.advance(4.0)

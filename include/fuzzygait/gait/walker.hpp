@@ -104,6 +104,11 @@ struct WalkerOptions {
   double step_length = 0.70;       // metres, heel to heel
   double speed = 0.0;              // m/s
   double time_step = 1.0 / 240.0;  // seconds (0.00001 to 0.05); advance() subdivides longer frames
+  // Contact events kept between clear_events() calls, the oldest dropped beyond (0 to 4096; 0
+  // keeps none). Room for them is taken at construction, 32 bytes an event: a crowd whose game
+  // reads and clears its characters' events every frame needs a few (a step makes at most four a
+  // leg), the default keeps about 7 s of walking.
+  std::size_t event_capacity = 64;
   rig::JointLimits limits;
   StartPose start;
 };
@@ -163,10 +168,11 @@ class Walker {
   double time() const noexcept { return state_.time; }
   const rig::Segments& segments() const noexcept { return segments_; }
 
-  // Contact events since the last clear_events(), at most kEventCapacity (the oldest dropped).
+  // Contact events since the last clear_events(), at most WalkerOptions::event_capacity (the
+  // oldest dropped).
   const std::vector<EventRecord>& events() const noexcept { return events_; }
   void clear_events() noexcept { events_.clear(); }
-  static constexpr std::size_t kEventCapacity = 64;
+  static constexpr std::size_t kMostEvents = 4096;   // the largest event_capacity
   static constexpr double kLongestAdvance = 3600.0;  // s, the longest dt advance() takes
 
   // Shortest step these controllers walk for these legs (metres): the set's shortest_step leg
@@ -206,7 +212,10 @@ class Walker {
   rig::Segments segments_;
   rig::JointLimits limits_;
   double step_length_;  // the step commanded when walking by step length
+  std::uint32_t event_capacity_;
   bool by_speed_ = false;
+  bool end_points_valid_ = false;
+  bool blends_valid_ = false;
   double speed_target_ = 0.0;  // m/s
   double speed_unit_ = 1.0;    // sqrt(g * leg length): the speed of pace 1
   // The cadence the controllers play at over the set's, cached for the speed it was computed at.
@@ -228,12 +237,10 @@ class Walker {
   std::array<rig::LegTrig, 2> trig_{};
   // Each leg's points as the last time step left them: the next one starts from them.
   std::array<rig::LegPoints, 2> end_points_{};
-  bool end_points_valid_ = false;
   // Each leg's terrain-word blend, worked out again only when the leg's ground (its metrics
   // incline and stairs, bit for bit) changes.
   std::array<ControllerSet::GroundBlend, 2> blends_{};
   std::array<std::array<double, 2>, 2> blend_ground_{};
-  bool blends_valid_ = false;
   std::vector<EventRecord> events_;
 };
 

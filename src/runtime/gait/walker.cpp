@@ -207,6 +207,7 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
       segments_(options.segments),
       limits_(options.limits),
       step_length_(options.step_length),
+      event_capacity_(static_cast<std::uint32_t>(std::min(options.event_capacity, kMostEvents))),
       time_step_(options.time_step) {
   rig::validate(segments_);
   rig::validate(limits_);
@@ -216,6 +217,10 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
   if (!(time_step_ >= kShortestTimeStep && time_step_ <= kLongestTimeStep)) {
     throw std::invalid_argument("time step must be between 0.00001 and 0.05 s, got " +
                                 number_text(time_step_));
+  }
+  if (options.event_capacity > kMostEvents) {
+    throw std::invalid_argument("event capacity must be at most " + std::to_string(kMostEvents) +
+                                " events, got " + std::to_string(options.event_capacity));
   }
   speed_unit_ = std::sqrt(kGravity * segments_.leg_length());
   by_speed_ = !(options.speed == 0.0);
@@ -244,7 +249,7 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
     speed_target_ = step_speed();
   }
   workspaces_ = controllers.make_workspaces();
-  events_.reserve(kEventCapacity);
+  events_.reserve(event_capacity_);
   heel_offset_ = detail::heel_offset(segments_);
   const LegPoints straight = rig::forward_kinematics(segments_, {0.0, 0.0}, 0.0, LegAngles{});
   reach_ = std::hypot(straight.heel.x - straight.hip.x, straight.heel.y - straight.hip.y);
@@ -373,7 +378,8 @@ inline LegPoints WalkerStages::leg_points(Walker& w, int leg, Point hip, const L
 }
 
 void Walker::record(rig::Side side, Event event, Point where) {
-  if (events_.size() == kEventCapacity) events_.erase(events_.begin());
+  if (event_capacity_ == 0) return;
+  if (events_.size() == event_capacity_) events_.erase(events_.begin());
   events_.push_back({state_.time, side, event, where});
 }
 
