@@ -104,7 +104,7 @@ double bisect(double good, double bad, Ok ok) {
 
 // How far the ground's corners (a stair's nosing, the top of a kerb) rise through the segment from
 // a to b: the largest height of a corner above the segment, -infinity when none lies under it.
-double corner_depth(const terrain::Terrain& terrain, Point a, Point b) {
+FUZZYGAIT_ALWAYS_INLINE double corner_depth(const terrain::Terrain& terrain, Point a, Point b) {
   if (b.x < a.x) std::swap(a, b);
   double depth = -std::numeric_limits<double>::infinity();
   for (const Point& c : terrain.corners_between(a.x, b.x)) {
@@ -123,7 +123,8 @@ struct FootGround {
   double sole_corners;  // corner_depth of heel-ball
   double toe_corners;   // and of ball-tip
 };
-FootGround ground_under(const terrain::Terrain& terrain, const LegPoints& p) {
+FUZZYGAIT_ALWAYS_INLINE FootGround ground_under(const terrain::Terrain& terrain,
+                                                const LegPoints& p) {
   return {terrain.height(p.heel.x), terrain.height(p.ball.x), terrain.height(p.tip.x),
           corner_depth(terrain, p.heel, p.ball), corner_depth(terrain, p.ball, p.tip)};
 }
