@@ -1,11 +1,13 @@
 # The Blender add-on (apps/blender/fuzzygait_blender) in Blender itself, in background mode:
 #
 #   blender -b --factory-startup --python-exit-code 1 --python test_addon.py -- \
-#       --module-dir build/python --addon-dir apps/blender --cli build/fuzzygait \
+#       [--module-dir build/python] --addon-dir apps/blender --cli build/fuzzygait \
 #       --work DIR [CASE...]
 #
+# Without --module-dir the add-on must find the module itself (an installed add-on does).
 # Cases: straight (the project's own BVH skeleton, imported by Blender's importer, walked by the
-# operator: keys on every frame, knees and ankles where the walker has them, the distance),
+# operator: keys on every frame, knees, ankles, balls and toe tips where the walker has them, the
+# distance),
 # curve (a quarter circle: the hips on it, facing along it), rigs (Mixamo- and Rigify-named
 # armatures built here, rotated, scaled and with rolled bones: found by name and posed where the
 # walker is), errors (each refusal, with its message, writing nothing) and register (the add-on
@@ -23,20 +25,24 @@ import bpy
 from mathutils import Matrix, Vector
 
 parser = argparse.ArgumentParser()
-parser.add_argument("--module-dir", required=True)
+parser.add_argument("--module-dir", default="")
 parser.add_argument("--addon-dir", required=True)
 parser.add_argument("--cli", required=True)
 parser.add_argument("--work", required=True)
 parser.add_argument("cases", nargs="*")
 args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else [])
-sys.path.insert(0, args.module_dir)
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+if args.module_dir:
+    sys.path.insert(0, args.module_dir)
 sys.path.insert(0, args.addon_dir)
 
-import fuzzygait as fg  # noqa: E402
 import fuzzygait_blender  # noqa: E402
-from fuzzygait_blender import rig, walk  # noqa: E402
+from fuzzygait_blender import rig, ui, walk  # noqa: E402
 
 fuzzygait_blender.register()
+fg = walk.import_module(ui.module_dirs(bpy.context))
+print("fuzzygait module:", fg.__file__)
+print("add-on:", fuzzygait_blender.__file__)
 os.makedirs(args.work, exist_ok=True)
 
 FPS, FIRST, LAST = 30, 1, 120
@@ -54,6 +60,7 @@ def new_scene():
         bpy.data.objects.remove(obj)
     for action in list(bpy.data.actions):
         bpy.data.actions.remove(action)
+    bpy.context.view_layer.update()
     scene = bpy.context.scene
     scene.render.fps, scene.render.fps_base = FPS, 1.0
     scene.frame_start, scene.frame_end = FIRST, LAST
@@ -61,7 +68,7 @@ def new_scene():
 
 
 def activate(obj):
-    for other in bpy.context.view_layer.objects:
+    for other in bpy.context.scene.objects:
         other.select_set(False)
     if obj is not None:
         obj.select_set(True)
@@ -99,8 +106,9 @@ def expected_walker(stature, segments, speed=1.3):
 
 
 def compare_legs(obj, mapping, start, forward, scale, walker, label):
-    """Max distance (walker metres) between the knees and ankles in Blender and the walker's
-    points placed along the straight path from start (world) along forward (world, level)."""
+    """Max distance (walker metres) between the knees, ankles, balls (toe heads) and toe tips in
+    Blender and the walker's points placed along the straight path from start (world) along
+    forward (world, level)."""
     up = Vector((0, 0, 1))
     hip_rest = (world_head(obj, mapping["thigh_l"]) + world_head(obj, mapping["thigh_r"])) / 2
     lateral = {side: world_head(obj, mapping["thigh_" + side]) - hip_rest for side in "lr"}
@@ -112,13 +120,18 @@ def compare_legs(obj, mapping, start, forward, scale, walker, label):
         bpy.context.scene.frame_set(frame)
         points = walker.points
         for leg, side in enumerate("lr"):
-            for j, part in ((1, "shin"), (2, "foot")):
+            toe = obj.pose.bones[mapping["toe_" + side]]
+            joints = {1: world_head(obj, mapping["shin_" + side]),
+                      2: world_head(obj, mapping["foot_" + side]),
+                      4: obj.matrix_world @ toe.head, 5: obj.matrix_world @ toe.tail}
+            for j, got in joints.items():
                 x, y = points[leg][j]
                 want = start + forward * ((x - x0) * scale) + up * (y * scale) + lateral[side]
-                got = world_head(obj, mapping[part + "_" + side])
                 worst = max(worst, (got - want).length / scale)
-    print("%s: knees and ankles within %.3f mm of the walker's" % (label, worst * 1000))
-    check(worst < 0.001, "%s: knees and ankles %.3f mm off the walker's" % (label, worst * 1e3))
+    print("%s: knees, ankles, balls and toe tips within %.3f mm of the walker's"
+          % (label, worst * 1000))
+    check(worst < 0.001, "%s: knees, ankles, balls and toe tips %.3f mm off the walker's"
+          % (label, worst * 1e3))
     return walker
 
 
@@ -249,7 +262,7 @@ def rig_case(label, names, pelvis, spine, matrix_world, up_axis, forward_sign):
     for side in "lr":
         leg = leg_bones([n % {"L": "Left" if side == "l" else "Right", "l": side.upper()}
                          for n in names], side, 0.09, hip_z, (0.02, 0.50), (0.0, 0.07),
-                        (0.13, 0.02), (0.20, 0.0), forward_sign, up_axis)
+                        (0.13, 0.0), (0.20, 0.0), forward_sign, up_axis)
         leg[0] = leg[0][:1] + (pelvis,) + leg[0][2:]
         bones.extend(leg)
     up_vec = Vector((0, 100, 0)) if up_axis == "Y" else Vector((0, 0, 1))
@@ -282,6 +295,18 @@ def rig_case(label, names, pelvis, spine, matrix_world, up_axis, forward_sign):
     # The lateral offsets come from the rest pose: reset to it for the comparison's start.
     compare_legs(obj, mapping, start, forward.normalized(), result.scale,
                  expected_walker(result.stature, result.segments), label)
+    # The pelvis tilts as the walker's (11 deg, the default set's), the spine stays upright.
+    scene.frame_set(LAST // 2)
+    spine = obj.pose.bones[mapping["spine"]]
+    pelvis = obj.pose.bones[mapping["pelvis"]]
+    spine_axis = (obj.matrix_world @ spine.tail - obj.matrix_world @ spine.head).normalized()
+    pelvis_axis = (obj.matrix_world @ pelvis.tail - obj.matrix_world @ pelvis.head).normalized()
+    lean = math.degrees(spine_axis.angle(Vector((0, 0, 1))))
+    tilt = math.degrees(pelvis_axis.angle(Vector((0, 0, 1))))
+    print("%s: spine %.3f deg off upright, pelvis tilted %.2f deg" % (label, lean, tilt))
+    check(lean < 0.01, "%s: the spine leans %.3f deg" % (label, lean))
+    check(abs(tilt - 11.0) < 0.1, "%s: the pelvis is tilted %.2f deg, not 11" % (label, tilt))
+    check(pelvis_axis.dot(forward) > 0, "%s: the pelvis tilts backwards" % label)
 
 
 def case_rigs():
