@@ -100,7 +100,8 @@ def resolve_map(bones, given):
         for parent, child in zip(chain, chain[1:]):
             if bones[parent] not in bones[child].parent_recursive:
                 problems.append("'%s' is not a descendant of '%s'" % (child, parent))
-    if mapping["spine"] and bones[mapping["pelvis"]] not in bones[mapping["spine"]].parent_recursive:
+    spine = mapping["spine"]
+    if spine and bones[mapping["pelvis"]] not in bones[spine].parent_recursive:
         problems.append("spine '%s' is not a descendant of the pelvis '%s'"
                         % (mapping["spine"], mapping["pelvis"]))
     if problems:
