@@ -4,7 +4,6 @@
 #   build/fuzzygait walk -o out/walk
 #   blender -b --factory-startup --python scripts/blender-picture.py -- \
 #       build/python apps/blender out/walk.bvh docs/blender.png
-import builtins
 import math
 import os
 import sys
@@ -14,35 +13,22 @@ from mathutils import Matrix, Vector
 
 module_dir, addon_dir, bvh, out = sys.argv[sys.argv.index("--") + 1:]
 sys.dont_write_bytecode = True
-sys.path[:0] = [module_dir, addon_dir]
+sys.path[:0] = [module_dir, addon_dir,
+                os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "blender")]
 import fuzzygait_blender  # noqa: E402
+import scenes  # noqa: E402 (tests/blender/scenes.py)
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 fuzzygait_blender.register()
 scene = bpy.context.scene
 scene.render.fps, scene.frame_start, scene.frame_end = 30, 1, 120
 
-# Debian 12's Blender 3.4 opens BVH files with mode 'rU', which Python 3.11 rejects.
-original = builtins.open
-builtins.open = lambda f, mode="r", *a, **k: original(f, mode.replace("U", ""), *a, **k)
-bpy.ops.import_anim.bvh(filepath=bvh, global_scale=0.01)
-builtins.open = original
-rig = bpy.context.active_object
+rig = scenes.import_bvh(bvh, 0.01)
 rig.animation_data_clear()
 rig.location.z = -min((rig.matrix_world @ b.tail_local).z for b in rig.data.bones)
 
-radius = 4.0
-curve_data = bpy.data.curves.new("path", "CURVE")
-curve_data.dimensions, curve_data.bevel_depth = "3D", 0.01
-spline = curve_data.splines.new("BEZIER")
-spline.bezier_points.add(1)
-k = 0.5522847498 * radius
-a, b = spline.bezier_points
-a.co, a.handle_left, a.handle_right = (0, 0, 0), (0, k, 0), (0, -k, 0)
-b.co, b.handle_left, b.handle_right = (radius, -radius, 0), (radius - k, -radius, 0), \
-    (radius + k, -radius, 0)
-path = bpy.data.objects.new("path", curve_data)
-scene.collection.objects.link(path)
+path = scenes.quarter_circle(4.0, "path")
+path.data.bevel_depth = 0.01
 bpy.context.view_layer.objects.active = rig
 bpy.ops.fuzzygait.walk_armature(speed=1.3, path="CURVE", curve=path.name)
 

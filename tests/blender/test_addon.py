@@ -13,7 +13,6 @@
 # walker is), errors (each refusal, with its message, writing nothing) and register (the add-on
 # unregisters and registers again). Exits 1 when a check fails.
 import argparse
-import builtins
 import math
 import os
 import subprocess
@@ -35,9 +34,11 @@ sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 if args.module_dir:
     sys.path.insert(0, args.module_dir)
 sys.path.insert(0, args.addon_dir)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import fuzzygait_blender  # noqa: E402
 from fuzzygait_blender import rig, ui, walk  # noqa: E402
+import scenes  # noqa: E402
 
 fuzzygait_blender.register()
 fg = walk.import_module(ui.module_dirs(bpy.context))
@@ -81,14 +82,7 @@ def import_walk_bvh():
     if not os.path.exists(prefix + ".bvh"):
         subprocess.run([args.cli, "walk", "--cycles", "2", "-o", prefix], check=True,
                        stdout=subprocess.DEVNULL)
-    # Debian 12's Blender 3.4 opens BVH files with mode 'rU', which Python 3.11 rejects.
-    original = builtins.open
-    builtins.open = lambda f, mode="r", *a, **k: original(f, mode.replace("U", ""), *a, **k)
-    try:
-        bpy.ops.import_anim.bvh(filepath=prefix + ".bvh", global_scale=0.01)
-    finally:
-        builtins.open = original
-    obj = bpy.context.active_object
+    obj = scenes.import_bvh(prefix + ".bvh", 0.01)
     obj.animation_data_clear()
     for bone in obj.pose.bones:
         bone.matrix_basis = Matrix()
@@ -178,27 +172,11 @@ def case_straight():
           "walking again: LeftLeg keyed on %s" % frames[-3:])
 
 
-def quarter_circle(radius):
-    """From the origin heading -Y, turning left (towards +X) about (radius, 0, 0)."""
-    data = bpy.data.curves.new("quarter", "CURVE")
-    data.dimensions = "3D"
-    spline = data.splines.new("BEZIER")
-    spline.bezier_points.add(1)
-    k = 0.5522847498 * radius
-    a, b = spline.bezier_points
-    a.co, a.handle_left, a.handle_right = (0, 0, 0), (0, k, 0), (0, -k, 0)
-    b.co, b.handle_left, b.handle_right = (radius, -radius, 0), (radius - k, -radius, 0), \
-        (radius + k, -radius, 0)
-    obj = bpy.data.objects.new("quarter", data)
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
-
-
 def case_curve():
     scene = new_scene()
     obj = import_walk_bvh()
     radius = 4.0
-    curve = quarter_circle(radius)
+    curve = scenes.quarter_circle(radius)
     activate(obj)
     bpy.ops.fuzzygait.walk_armature(speed=1.3, path="CURVE", curve=curve.name)
     centre = Vector((radius, 0, 0))
