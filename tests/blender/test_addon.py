@@ -10,8 +10,9 @@
 # distance),
 # curve (a quarter circle: the hips on it, facing along it), rigs (Mixamo- and Rigify-named
 # armatures built here, rotated, scaled and with rolled bones: found by name and posed where the
-# walker is), errors (each refusal, with its message, writing nothing) and register (the add-on
-# unregisters and registers again). Exits 1 when a check fails.
+# walker is), errors (each refusal, with its message, writing nothing), panel (the sidebar panel
+# draws existing properties and passes them all to the operator; Find bones) and register (the
+# add-on unregisters and registers again). Exits 1 when a check fails.
 import argparse
 import math
 import os
@@ -19,6 +20,7 @@ import subprocess
 import sys
 import time
 import traceback
+import types
 
 import bpy
 from mathutils import Matrix, Vector
@@ -345,6 +347,55 @@ def case_errors():
     check(legless.animation_data is None, "a refused walk wrote keyframes on the legless rig")
 
 
+class FakeLayout:
+    """Stands in for a panel's layout: checks that each property drawn exists."""
+
+    def __init__(self):
+        self.operators = []
+
+    def _has(self, data, name):
+        check(name in data.bl_rna.properties, "the panel draws a missing property %r" % name)
+
+    def prop(self, data, name, **_):
+        self._has(data, name)
+
+    def prop_search(self, data, name, search_data, search_name, **_):
+        self._has(data, name)
+        check(hasattr(search_data, search_name), "the panel searches %r" % search_name)
+
+    def operator(self, idname, **_):
+        module, name = idname.split(".")
+        check(hasattr(getattr(bpy.ops, module), name), "the panel's operator %s" % idname)
+        self.operators.append(type("Properties", (), {})())
+        return self.operators[-1]
+
+    def label(self, **_):
+        pass
+
+    def column(self, **_):
+        return self
+
+    row = box = column
+
+
+def case_panel():
+    scene = new_scene()
+    obj = import_walk_bvh()
+    activate(obj)
+    bpy.ops.fuzzygait.map_bones()
+    check(scene.fuzzygait.thigh_l == "LeftUpLeg" and scene.fuzzygait.toe_r == "RightToeBase",
+          "Find bones filled in %s, %s" % (scene.fuzzygait.thigh_l, scene.fuzzygait.toe_r))
+    for pace, path in (("SPEED", "STRAIGHT"), ("STEP", "CURVE")):
+        scene.fuzzygait.pace, scene.fuzzygait.path = pace, path
+        scene.fuzzygait.use_scene_range = path == "STRAIGHT"
+        layout = FakeLayout()
+        ui.FUZZYGAIT_PT_walk.draw(types.SimpleNamespace(layout=layout), bpy.context)
+        walk_button = layout.operators[-1]
+        for key in list(ui.walk_properties()) + ui.BONE_ROLES:
+            check(getattr(walk_button, key, None) == getattr(scene.fuzzygait, key),
+                  "the panel's button does not pass %s" % key)
+
+
 def case_register():
     fuzzygait_blender.unregister()
     check(not hasattr(bpy.ops.fuzzygait, "walk_armature") or
@@ -359,7 +410,7 @@ def case_register():
 
 
 CASES = {"straight": case_straight, "curve": case_curve, "rigs": case_rigs,
-         "errors": case_errors, "register": case_register}
+         "errors": case_errors, "panel": case_panel, "register": case_register}
 for name in args.cases or list(CASES):
     begin = time.monotonic()
     try:
