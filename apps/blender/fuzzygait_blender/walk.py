@@ -13,6 +13,7 @@ import os
 import sys
 from dataclasses import dataclass, field
 
+import bpy
 from mathutils import Matrix
 
 from . import path as paths
@@ -67,7 +68,7 @@ class Settings:
 class Result:
     bones: dict         # the bone map used
     stature: float     # the walker's stature, m
-    scale: float       # armature units per walker metre
+    scale: float       # world units per walker metre
     segments: dict     # the walker's segment lengths, m
     frames: int
     travel: float      # walker metres from the first frame to the last
@@ -228,7 +229,6 @@ class Keys:
     def write(self, obj, first, last, action_name):
         data = obj.animation_data or obj.animation_data_create()
         if data.action is None:
-            import bpy
             data.action = bpy.data.actions.new(action_name)
         action = data.action
         for (path, index, group), keys in self.values.items():
