@@ -7,12 +7,12 @@
 # Without --module-dir the add-on must find the module itself (an installed add-on does).
 # Cases: straight (the project's own BVH skeleton, imported by Blender's importer, walked by the
 # operator: keys on every frame, knees, ankles, balls and toe tips where the walker has them, the
-# distance),
-# curve (a quarter circle: the hips on it, facing along it), rigs (Mixamo- and Rigify-named
-# armatures built here, rotated, scaled and with rolled bones: found by name and posed where the
-# walker is), errors (each refusal, with its message, writing nothing), panel (the sidebar panel
-# draws existing properties and passes them all to the operator; Find bones) and register (the
-# add-on unregisters and registers again). Exits 1 when a check fails.
+# distance), curve (a quarter circle: the hips on it, facing along it, planted feet staying put),
+# rigs (Mixamo- and Rigify-named armatures built here, rotated, scaled and with rolled bones:
+# found by name and posed where the walker is), errors (each refusal, with its message, writing
+# nothing), panel (the sidebar panel draws existing properties and passes them all to the
+# operator; Find bones) and register (the add-on unregisters and registers again). Exits 1 when a
+# check fails.
 import argparse
 import math
 import os
@@ -182,9 +182,22 @@ def case_curve():
     activate(obj)
     bpy.ops.fuzzygait.walk_armature(speed=1.3, path="CURVE", curve=curve.name)
     centre = Vector((radius, 0, 0))
-    worst_off, worst_heading, last_angle = 0.0, 0.0, 0.0
+    worst_off, worst_heading, last_angle, worst_slide = 0.0, 0.0, 0.0, 0.0
+    walker = expected_walker(1.75, fg.segments_from_stature(1.75))
+    planted = {}
     for frame in range(FIRST, LAST + 1):
+        if frame > FIRST:
+            walker.advance(1 / FPS)
         scene.frame_set(frame)
+        # A foot flat or on its ball keeps its ball (the toe's head) where it is.
+        for leg, side in enumerate(("Left", "Right")):
+            ball = obj.matrix_world @ obj.pose.bones[side + "ToeBase"].head
+            if walker.phases[leg] in ("flat", "ball"):
+                if leg in planted:
+                    worst_slide = max(worst_slide, (ball - planted[leg]).length)
+                planted[leg] = ball
+            else:
+                planted.pop(leg, None)
         hip = (world_head(obj, "LeftUpLeg") + world_head(obj, "RightUpLeg")) / 2
         radial = (hip - centre).xy
         worst_off = max(worst_off, abs(radial.length - radius))
@@ -199,6 +212,8 @@ def case_curve():
     check(worst_off < 0.01, "the hips left the curve by %.1f mm" % (worst_off * 1000))
     check(worst_heading < 1.0, "the body faced %.2f deg off the tangent" % worst_heading)
     check(last_angle > 45, "the walk went only %.1f deg round the quarter circle" % last_angle)
+    print("curve: a planted ball slides at most %.2f mm a frame" % (worst_slide * 1000))
+    check(worst_slide < 0.003, "a planted ball slid %.2f mm a frame" % (worst_slide * 1000))
 
 
 def build_armature(name, bones, matrix_world):

@@ -8,6 +8,8 @@
 # off the walking plane (legs splayed at rest) keeps its sideways part. The pelvis carries the
 # body along the path (its location and heading) and, with a spine bone mapped, the walker's
 # pelvic tilt while the spine stays upright; otherwise the trunk stays upright with the pelvis.
+# Along a curve the straight walk is bent onto it: each joint goes to the curve's frame at its
+# own distance along, so a planted foot stays planted while the hips turn.
 import math
 import os
 import sys
@@ -157,14 +159,22 @@ class Solver:
             needed.update(b.name for b in self.bones[name].parent_recursive)
         self.order = sorted(needed, key=lambda n: len(self.bones[n].parent_recursive))
         self.basis = {n: self.obj.pose.bones[n].matrix_basis.copy() for n in self.order}
+        # Under the hips at rest, on the ground: where the walk starts as if straight.
+        self.start = measure.hip - measure.up * (measure.hip.dot(measure.up) - measure.ground)
+        # Each leg bone's next joint (the next bone's head, the toe's tail) in its rest space.
+        self.end_local = {}
+        for side in ("l", "r"):
+            chain = [mapping[p + "_" + side] for p in ("thigh", "shin", "foot", "toe")]
+            for name, after in zip(chain, chain[1:] + [""]):
+                if not name:
+                    continue
+                bone = self.bones[name]
+                end = self.bones[after].head_local if after else bone.tail_local
+                self.end_local[name] = bone.matrix_local.inverted() @ end
 
-    def pose(self, ground_point, heading, height, tilt, angles, points, scale):
-        """{bone name: basis matrix} for the mapped bones at one sample."""
+    def _turns(self, tilt, angles, points):
+        """{leg bone: its turn from rest about the lateral axis}, radians."""
         m = self.m
-        yaw_angle = math.atan2(m.forward.cross(heading).dot(m.up), m.forward.dot(heading))
-        yaw = Matrix.Rotation(yaw_angle, 4, m.up)
-        hip_target = ground_point + m.up * (height * scale)
-        body = Matrix.Translation(hip_target) @ yaw
         orient = _orientations(tilt, angles)
         turn = {}
         for leg, side in enumerate(("l", "r")):
@@ -177,7 +187,57 @@ class Solver:
             turn[names[2]] = orient[leg][2]
             if names[3]:
                 turn[names[3]] = orient[leg][3]
+        return turn
 
+    def _yaw(self, heading):
+        """The turn about up from the rest facing to heading (4x4)."""
+        m = self.m
+        angle = math.atan2(m.forward.cross(heading).dot(m.up), m.forward.dot(heading))
+        return Matrix.Rotation(angle, 4, m.up)
+
+    def _warp(self, route, point):
+        """A point of the walk as if straight (from self.start along the rest facing) carried to
+        the route: by its distance along, its height and its sideways offset."""
+        m = self.m
+        d = point - self.start
+        ground, heading = route.at(d.dot(m.forward))
+        return ground + heading.cross(m.up) * d.dot(m.lateral) + m.up * d.dot(m.up)
+
+    def pose(self, route, distance, height, tilt, angles, points, scale):
+        """{bone name: basis matrix} for the mapped bones at one sample, the hips `distance`
+        along the route. Along a curve the walk is posed as if straight, then bent along it:
+        each leg bone points at its next joint carried to the route at that joint's own
+        distance, so that a planted foot stays where it was planted."""
+        m = self.m
+        turn = self._turns(tilt, angles, points)
+
+        def straight_leg(name, yaw, inherited):
+            rest = self.bones[name].matrix_local.to_3x3()
+            return yaw.to_3x3() @ Matrix.Rotation(turn[name], 3, m.lateral) @ rest
+
+        ground, heading = route.at(distance)
+        if isinstance(route, paths.StraightPath):
+            return self._solve(ground, heading, height, tilt, scale, straight_leg)[1]
+        straight = self._solve(self.start + m.forward * distance, m.forward, height, tilt, scale,
+                               straight_leg)[0]
+
+        def bent_leg(name, yaw, inherited):
+            posed = straight[name]
+            head, end = posed.translation, posed @ self.end_local[name]
+            turn_here = self._yaw(route.at((head - self.start).dot(m.forward))[1]).to_3x3()
+            was = turn_here @ (end - head)
+            now = self._warp(route, end) - inherited.translation
+            return was.rotation_difference(now).to_matrix() @ turn_here @ posed.to_3x3()
+
+        return self._solve(ground, heading, height, tilt, scale, bent_leg)[1]
+
+    def _solve(self, ground, heading, height, tilt, scale, orient_leg):
+        """(armature-space pose matrices of the mapped bones and their ancestors, basis matrices
+        of the mapped bones) with the hips `height` walker metres above ground, facing heading;
+        orient_leg(name, yaw, inherited) gives a leg bone's orientation (3x3)."""
+        m = self.m
+        yaw = self._yaw(heading)
+        body = Matrix.Translation(ground + m.up * (height * scale)) @ yaw
         posed, result = {}, {}
         for name in self.order:
             bone = self.bones[name]
@@ -197,15 +257,14 @@ class Solver:
             elif role == "spine":
                 target = self._rotated(inherited, yaw @ rest)
             elif role is not None:
-                target = self._rotated(inherited,
-                                       yaw @ Matrix.Rotation(turn[name], 4, m.lateral) @ rest)
+                target = self._rotated(inherited, orient_leg(name, yaw, inherited).to_4x4())
             else:
                 posed[name] = inherited
                 continue
             posed[name] = target
             parent_posed = posed[parent.name] if parent else Matrix()
             result[name] = (parent_posed @ local_rest).inverted() @ target
-        return result
+        return posed, result
 
     @staticmethod
     def _rotated(inherited, oriented):
@@ -279,9 +338,9 @@ def walk_armature(obj, settings, depsgraph, unit_scale=1.0, module_dirs=()):
                         % (obj.name, tuple(round(s, 4) for s in scale_vector)))
     object_scale = scale_vector[0]
 
+    solver = Solver(obj, mapping, measure, settings.pelvis_tilt)
     if settings.path == "STRAIGHT":
-        start = measure.hip - measure.up * (measure.hip.dot(measure.up) - measure.ground)
-        route = paths.StraightPath(start, measure.forward)
+        route = paths.StraightPath(solver.start, measure.forward)
     elif settings.path == "CURVE":
         curve = settings.curve
         if curve is None or curve.type != "CURVE":
@@ -298,7 +357,6 @@ def walk_armature(obj, settings, depsgraph, unit_scale=1.0, module_dirs=()):
 
     fg = import_module(module_dirs)
     walker, stature, scale = make_walker(fg, settings, measure, unit_scale * object_scale)
-    solver = Solver(obj, mapping, measure, settings.pelvis_tilt)
     keys = Keys()
     dt = 1.0 / settings.fps
     x0 = float(walker.pelvis[0])
@@ -310,8 +368,7 @@ def walk_armature(obj, settings, depsgraph, unit_scale=1.0, module_dirs=()):
         x, height = (float(v) for v in walker.pelvis)
         distance = (x - x0) * scale
         past_end = past_end or distance > route.length
-        ground_point, heading = route.at(distance)
-        basis = solver.pose(ground_point, heading, float(height), float(walker.pelvis_tilt),
+        basis = solver.pose(route, distance, float(height), float(walker.pelvis_tilt),
                             walker.angles.tolist(), walker.points.tolist(), scale)
         for name, matrix in basis.items():
             pose_bone = obj.pose.bones[name]
