@@ -40,3 +40,30 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/fuzzygaitConfigVers
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/fuzzygaitConfig.cmake
               ${CMAKE_CURRENT_BINARY_DIR}/fuzzygaitConfigVersion.cmake
         DESTINATION ${package_dir} COMPONENT runtime)
+
+# The Python module (component python) into a site-packages folder under the prefix, Debian's
+# layout by default: /usr/lib/python3/dist-packages is on Debian's python3's path (under
+# /usr/local, set FUZZYGAIT_INSTALL_PYTHONDIR=lib/python3.11/dist-packages, or an absolute path).
+# The Blender add-on (component blender) into share/fuzzygait/blender/fuzzygait_blender, told
+# where the module went (_installed.py, written at install time for the prefix installed to).
+set(FUZZYGAIT_INSTALL_PYTHONDIR "lib/python3/dist-packages" CACHE STRING
+    "Where cmake --install puts the Python module: relative to the prefix, or absolute")
+if(TARGET fuzzygait_python)
+  install(TARGETS fuzzygait_python LIBRARY DESTINATION ${FUZZYGAIT_INSTALL_PYTHONDIR}
+          COMPONENT python)
+endif()
+set(blender_addon_dir ${CMAKE_INSTALL_DATADIR}/fuzzygait/blender)
+install(DIRECTORY apps/blender/fuzzygait_blender DESTINATION ${blender_addon_dir}
+        COMPONENT blender PATTERN __pycache__ EXCLUDE)
+if(TARGET fuzzygait_python)
+  install(CODE "
+    set(python_dir \"${FUZZYGAIT_INSTALL_PYTHONDIR}\")
+    if(NOT IS_ABSOLUTE \"\${python_dir}\")
+      set(python_dir \"\${CMAKE_INSTALL_PREFIX}/\${python_dir}\")
+    endif()
+    set(addon \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${blender_addon_dir}/fuzzygait_blender\")
+    message(STATUS \"Installing: \${addon}/_installed.py\")
+    file(WRITE \"\${addon}/_installed.py\"
+         \"# Written by cmake --install: where it put the fuzzygait module.\\nMODULE_DIR = r'\${python_dir}'\\n\")
+    " COMPONENT blender)
+endif()

@@ -14,6 +14,9 @@ packages=(
   libcpp-httplib-dev               # the studio's HTTP server (MIT; pulls in OpenSSL, zlib, Brotli)
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the Blender add-on's tests (apps/blender) and the BVH and glTF import checks; Debian's
+  # Blender runs Debian's python3, so it loads the module built for it (a large download)
+  blender
   # GPL reference oracle: linked only by the tests and by fuzzygait-bench
   libfuzzylite-dev fuzzylite
   # the studio's page (npm lock file in studio/), the BVH and glTF import checks (tests/js)
