@@ -202,7 +202,15 @@ struct ControllerSet {
     double ascent = 0.0;                     // ascent_weight()
     double landing_knee = 0.0;               // landing_knee()
     std::array<bool, 2> own_at{true, true};  // own_controllers_at(), [LegPhase]
-    std::array<double, kSlotCount> own_degree{1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+    // own_degree(): the degrees of the fired words without a file for `slot`, summed in order.
+    double own_degree(int slot) const noexcept {
+      if (!words) return 1.0;
+      double sum = 0.0;
+      for (std::size_t i = 0; i < fired; ++i) {
+        if (words->of_slot[static_cast<std::size_t>(slot)][word[i]] < 0) sum += degree[i];
+      }
+      return sum;
+    }
   };
   GroundBlend blend(const MetricValues& metrics) const;
   // evaluate() with the metrics' blend worked out before.

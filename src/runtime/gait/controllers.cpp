@@ -311,8 +311,6 @@ ControllerSet::GroundBlend ControllerSet::blend(const MetricValues& metrics) con
     ++b.fired;
   });
   if (!words) return b;
-  // Summed in the words' order, as evaluate() sums their commands.
-  b.own_degree.fill(0.0);
   for (std::size_t i = 0; i < b.fired; ++i) {
     const GroundWords& g = *b.words;
     const std::size_t word = b.word[i];
@@ -320,9 +318,7 @@ ControllerSet::GroundBlend ControllerSet::blend(const MetricValues& metrics) con
     if (g.ascent[word]) b.ascent += degree;
     b.landing_knee += degree * g.landing_knee[word];
     for (std::size_t s = 0; s < static_cast<std::size_t>(kSlotCount); ++s) {
-      const bool own = g.of_slot[s][word] < 0;
-      if (own) b.own_degree[s] += degree;
-      b.own_at[s / 4] = b.own_at[s / 4] && own;
+      b.own_at[s / 4] = b.own_at[s / 4] && g.of_slot[s][word] < 0;
     }
   }
   return b;
@@ -388,7 +384,7 @@ bool ControllerSet::own_controllers_at(LegPhase phase, const MetricValues& metri
 }
 
 double ControllerSet::own_degree(int slot, const MetricValues& metrics) const {
-  return blend(metrics).own_degree[static_cast<std::size_t>(slot)];
+  return blend(metrics).own_degree(slot);
 }
 
 double ControllerSet::ascent_weight(const MetricValues& metrics) const {

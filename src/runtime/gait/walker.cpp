@@ -1070,8 +1070,7 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
                             : 1.0;
     if (l.phase == Phase::Swing && w.controllers_->has_terrain_words()) {
       const double own =
-          w.blends_[static_cast<std::size_t>(leg)]
-              .own_degree[static_cast<std::size_t>(slot(LegPhase::Swing, Joint::Knee))];
+          w.blends_[static_cast<std::size_t>(leg)].own_degree(slot(LegPhase::Swing, Joint::Knee));
       if (own < 1.0) knee_scale = own * knee_scale + (1.0 - own);
     }
     // The hip's command is a share of the sweep per second, the others degrees per second, at
