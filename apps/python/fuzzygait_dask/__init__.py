@@ -74,6 +74,13 @@ class ClipResult:
         write_files(folder, self.files)
         return folder
 
+    def load(self):
+        """The trained set, a fuzzygait.ControllerSet."""
+        import fuzzygait as fg
+
+        with tempfile.TemporaryDirectory(prefix="fuzzygait-set-") as tmp:
+            return fg.ControllerSet.load(self.save(tmp))
+
     def summary(self) -> dict:
         """Everything but the set's files, as JSON-ready data."""
         d = dataclasses.asdict(self)
