@@ -105,3 +105,21 @@ def test_the_command_line_trains_prints_a_table_and_names_the_failed_clip(
         "training.json": (out / "07_01" / "training.json").read_bytes()})
     assert json.loads((out / "07_01" / "training.json").read_text())["clip"] == "07_01"
     assert not (out / "cut").exists()
+
+
+def test_a_leg_mapping_and_a_base_folder_travel_as_bytes(client, tmp_path):
+    legs = tmp_path / "legs.json"
+    legs.write_text(json.dumps({
+        "root": "Hips",
+        "left": {"hip": "LeftUpLeg", "knee": "LeftLeg", "ankle": "LeftFoot", "toe": "LeftToeBase"},
+        "right": {"hip": "RightUpLeg", "knee": "RightLeg", "ankle": "RightFoot",
+                  "toe": "RightToeBase"}}))
+    base = tmp_path / "base"
+    fg.ControllerSet.builtin("heavy").save(base)
+    [r] = fgd.train_clips([CLIPS[0]], client, base=base, map=legs, **OPTIONS)
+    t = fg.train([CLIPS[0]], fg.ControllerSet.load(base), map=legs, **OPTIONS)
+    t.set.save(tmp_path / "here")
+    assert r.ok and r.files == fgd.read_files(tmp_path / "here")
+    legs.write_text('{"left": {"hip": "nowhere"}}')
+    [bad] = fgd.train_clips([CLIPS[0]], client, map=legs, **OPTIONS)
+    assert not bad.ok and "legs.json" in bad.error and str(tmp_path / "legs") not in bad.error

@@ -145,10 +145,11 @@ def _send_progress(topic: Optional[str], clip: str, every: float) -> Optional[Ca
     return progress
 
 
-def train_one(name: str, path: str, bvh: bytes, mapping: Optional[bytes], base, options: dict,
+def train_one(name: str, path: str, bvh: bytes, mapping: Optional[tuple], base, options: dict,
               topic: Optional[str] = None, every: float = 2.0) -> ClipResult:
     """Trains a set on one clip given as bytes (the task each worker runs; in-process too).
 
+    `mapping` is a leg mapping file's (name, bytes), `base` a built-in name or a set's files.
     Raises ClipFailed naming the clip when reading or training fails.
     """
     import fuzzygait as fg
@@ -160,8 +161,8 @@ def train_one(name: str, path: str, bvh: bytes, mapping: Optional[bytes], base, 
         clip_file.write_bytes(bvh)
         options = dict(options)
         if mapping is not None:
-            (tmp / "map.txt").write_bytes(mapping)
-            options["map"] = tmp / "map.txt"
+            options["map"] = tmp / mapping[0]  # errors name the file as its owner named it
+            options["map"].write_bytes(mapping[1])
         try:
             t = fg.train([clip_file], _load_base(base, tmp),
                          progress=_send_progress(topic, name, every), **options)
@@ -210,7 +211,8 @@ def train_clips(clips: Iterable, client=None, *, progress: Optional[Callable[[di
             raise TypeError(f"train_clips: {forbidden} is not a train option here")
     base = _base_argument(options.pop("base", "default"))
     mapping = options.pop("map", None)
-    mapping = Blob(pathlib.Path(mapping).read_bytes()) if mapping is not None else None
+    if mapping is not None:
+        mapping = (pathlib.Path(mapping).name, Blob(pathlib.Path(mapping).read_bytes()))
 
     run = uuid.uuid4().hex[:8]
     topic = f"fuzzygait-train-{run}" if progress else None
