@@ -42,7 +42,7 @@ def test_clips_train_on_workers_as_in_process_and_a_bad_clip_fails_alone(
         client, truncated_clip, tmp_path):
     events = []
     results = fgd.train_clips([CLIPS[0], truncated_clip, CLIPS[1]], client,
-                              progress=events.append, every=0.0, **OPTIONS)
+                              progress=events.append, every=0.0, retries=1, **OPTIONS)
     assert [r.clip for r in results] == ["07_01", "cut", "08_01"]
     good = [results[0], results[2]]
     assert all(r.ok and r.worker.startswith("tcp://") for r in good)

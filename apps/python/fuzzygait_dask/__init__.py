@@ -10,7 +10,7 @@ options (tested).
     import fuzzygait_dask as fgd
     with Client("tcp://scheduler:8786") as client:
         for r in fgd.train_clips(["a.bvh", "b.bvh"], client, generations=200):
-            print(r.clip, r.ok and r.cost_after or r.error)
+            print(r.clip, r.cost_after if r.ok else r.error)
 """
 from __future__ import annotations
 
@@ -38,7 +38,7 @@ class Blob(bytes):
 
 
 class ClipFailed(Exception):
-    """A clip's training failed on a worker: args are (clip file name, "Type: message")."""
+    """A clip's training failed on a worker: args are (the clip's path, "Type: message")."""
 
     def __str__(self) -> str:
         return f"{self.args[0]}: {self.args[1]}"
@@ -195,7 +195,7 @@ def train_clips(clips: Iterable, client=None, *, progress: Optional[Callable[[di
     fuzzygait.train's (base, generations, polish, threads, seed, map, up, unit, skip, ...); `base`
     may be a built-in name, a set folder or a ControllerSet, `map` a leg mapping file: both are
     sent as bytes. Returns a ClipResult per clip, in the clips' order; a clip that fails (after
-    `retries` more attempts, each one visible on the cluster's dashboard) has ok False and
+    `retries` more attempts, each failed one logged by its worker) has ok False and
     `error`, and the others still train. `progress(dict)` is called on the client: an "iteration"
     event from a training at most every `every` seconds (stage, iteration, cost, rmse), then
     "done" or "failed" as each clip ends (clip, done, total, seconds, worker, error).

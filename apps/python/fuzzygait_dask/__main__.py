@@ -82,8 +82,9 @@ def train(args) -> int:
                         dashboard_address=None)
     with client:
         if not args.quiet:
-            print(f"fuzzygait_dask: {len(args.clips)} clips on "
-                  f"{len(client.scheduler_info()['workers'])} workers", flush=True)
+            clips, workers = len(args.clips), len(client.scheduler_info()["workers"])
+            print(f"fuzzygait_dask: {clips} clip{'s' * (clips != 1)} on {workers} "
+                  f"worker{'s' * (workers != 1)}", flush=True)
         results = train_clips(args.clips, client, progress=progress, retries=args.retries,
                               **options)
 
