@@ -41,9 +41,10 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/fuzzygaitConfig.cmake
               ${CMAKE_CURRENT_BINARY_DIR}/fuzzygaitConfigVersion.cmake
         DESTINATION ${package_dir} COMPONENT runtime)
 
-# The Python module (component python) into a site-packages folder under the prefix, Debian's
-# layout by default: /usr/lib/python3/dist-packages is on Debian's python3's path (under
-# /usr/local, set FUZZYGAIT_INSTALL_PYTHONDIR=lib/python3.11/dist-packages, or an absolute path).
+# The Python module and fuzzygait_dask (component python) into a site-packages folder under the
+# prefix, Debian's layout by default: /usr/lib/python3/dist-packages is on Debian's python3's path
+# (under /usr/local, set FUZZYGAIT_INSTALL_PYTHONDIR=lib/python3.11/dist-packages, or an absolute
+# path).
 # The Blender add-on (component blender) into share/fuzzygait/blender/fuzzygait_blender, told
 # where the module went (_installed.py, written at install time for the prefix installed to).
 set(FUZZYGAIT_INSTALL_PYTHONDIR "lib/python3/dist-packages" CACHE STRING
@@ -51,6 +52,9 @@ set(FUZZYGAIT_INSTALL_PYTHONDIR "lib/python3/dist-packages" CACHE STRING
 if(TARGET fuzzygait_python)
   install(TARGETS fuzzygait_python LIBRARY DESTINATION ${FUZZYGAIT_INSTALL_PYTHONDIR}
           COMPONENT python)
+  # fuzzygait_dask beside it: training and walks on a Dask cluster (docs/python.md).
+  install(DIRECTORY apps/python/fuzzygait_dask DESTINATION ${FUZZYGAIT_INSTALL_PYTHONDIR}
+          COMPONENT python PATTERN __pycache__ EXCLUDE)
 endif()
 set(blender_addon_dir ${CMAKE_INSTALL_DATADIR}/fuzzygait/blender)
 install(DIRECTORY apps/blender/fuzzygait_blender DESTINATION ${blender_addon_dir}

@@ -26,6 +26,7 @@ packages=(
   python3
   # the Python module, import fuzzygait (apps/python; built for /usr/bin/python3), and its tests
   pybind11-dev python3-dev python3-numpy python3-pytest
+  python3-distributed              # fuzzygait_dask: training on a Dask cluster (and its tests)
 )
 
 # A Node.js installed otherwise counts: NodeSource's nodejs package bundles npm and conflicts with

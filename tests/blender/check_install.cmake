@@ -1,6 +1,7 @@
-# Installs the Python module and the Blender add-on (components python and blender) into a
-# scratch prefix, then has Blender walk an armature with the installed add-on, given neither the
-# module's folder nor the build tree: the add-on finds the module where the install put it.
+# Installs the Python module (with fuzzygait_dask) and the Blender add-on (components python and
+# blender) into a scratch prefix, then has Blender walk an armature with the installed add-on,
+# given neither the module's folder nor the build tree: the add-on finds the module where the
+# install put it.
 # cmake -DBLENDER=... -DBUILD_DIR=... -DSCRIPT=... -DCLI=... -DDATADIR=... -DWORK_DIR=...
 #       -P check_install.cmake
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -13,10 +14,14 @@ foreach(component IN ITEMS python blender)
 endforeach()
 file(GLOB_RECURSE modules "${prefix}/*/fuzzygait.cpython-*.so")
 set(addon "${prefix}/${DATADIR}/fuzzygait/blender")
-if(NOT modules OR NOT EXISTS "${addon}/fuzzygait_blender/__init__.py"
+if(modules)
+  list(GET modules 0 module)
+  get_filename_component(python_dir "${module}" DIRECTORY)
+endif()
+if(NOT modules OR NOT EXISTS "${python_dir}/fuzzygait_dask/__init__.py" OR NOT EXISTS "${addon}/fuzzygait_blender/__init__.py"
    OR NOT EXISTS "${addon}/fuzzygait_blender/_installed.py")
   file(GLOB_RECURSE installed RELATIVE "${prefix}" "${prefix}/*")
-  message(FATAL_ERROR "the module or the add-on is not installed: ${installed}")
+  message(FATAL_ERROR "the module, fuzzygait_dask or the add-on is not installed: ${installed}")
 endif()
 run("${BLENDER}" -b --factory-startup --python-exit-code 1 --python "${SCRIPT}" --
     --addon-dir "${addon}" --cli "${CLI}" --work "${WORK_DIR}/work" straight)
