@@ -311,7 +311,79 @@ function rulesHtml(controller) {
     grid = `<table class="rule-grid"><tr><th>${escapeHtml(a.name)} \\ ${escapeHtml(b.name)}</th>${b.terms.map((t) => `<th>${escapeHtml(readable(t.name))}</th>`).join('')}</tr>
       ${rules.grid.map((row, i) => `<tr><th>${escapeHtml(readable(a.terms[i].name))}</th>${row.map(cell).join('')}</tr>`).join('')}</table>`;
   }
-  return `${grid}<ol class="rule-text">${rules.text.map((r) => `<li>${escapeHtml(r)}</li>`).join('')}</ol>`;
+  return grid;
+}
+
+// The rules as text to edit, one a line as FLL writes them. Apply sends them to the server, which
+// reads them with the library's own rule parser: a rule it cannot read comes back as a refusal
+// naming the rule's number and the word, shown under the text, which stays as typed.
+function ruleEditor(element, controller, onRules) {
+  element.innerHTML = `<div class="rule-grid-box"></div>
+    <textarea class="rule-edit" spellcheck="false" aria-label="rules of ${escapeHtml(controller.title)}"></textarea>
+    <div class="rule-actions"><button type="button" class="apply-rules" disabled>Apply rules</button>
+    <button type="button" class="revert-rules" disabled>Revert</button>
+    <span class="rule-help">one rule a line: if INPUT is TERM [and …] then OUTPUT is WORD [with W]</span></div>
+    <p class="rule-error" role="alert"></p>`;
+  const text = element.querySelector('.rule-edit');
+  const apply = element.querySelector('.apply-rules');
+  const revert = element.querySelector('.revert-rules');
+  const editor = {
+    shown: '',
+    sent: false,
+    dirty: () => text.value !== editor.shown,
+    sync: () => {
+      apply.disabled = revert.disabled = !editor.dirty();
+    },
+    show: (rules) => {
+      const value = rules.text.join('\n');
+      // An edit being typed stays until it is applied or reverted.
+      if (!editor.dirty() || editor.sent) {
+        text.value = value;
+        element.querySelector('.rule-error').textContent = '';
+      }
+      editor.shown = value;
+      editor.sent = false;
+      text.rows = Math.min(36, 2 * rules.text.length + 1);
+      editor.sync();
+    },
+    refused: (message) => {
+      editor.sent = false;
+      element.querySelector('.rule-error').textContent = message;
+      // The rule refused, selected: "rule N" counts the lines that are not blank.
+      const match = /^rule (\d+)/.exec(message);
+      if (!match) return;
+      let n = Number(match[1]);
+      let start = 0;
+      for (const line of text.value.split('\n')) {
+        if (line.trim() !== '' && --n === 0) {
+          text.focus();
+          text.setSelectionRange(start, start + line.length);
+          return;
+        }
+        start += line.length + 1;
+      }
+    },
+  };
+  text.addEventListener('input', editor.sync);
+  text.addEventListener('keydown', (event) => {
+    if (event.key === 'Enter' && (event.ctrlKey || event.metaKey)) {
+      event.preventDefault();
+      apply.click();
+    }
+    event.stopPropagation(); // the page's keys (space: play, arrows: step) are not the text's
+  });
+  apply.addEventListener('click', () => {
+    const rules = text.value.split('\n').map((line) => line.trim()).filter((line) => line !== '');
+    editor.sent = true;
+    element.querySelector('.rule-error').textContent = '';
+    onRules(controller.id, rules, editor.refused);
+  });
+  revert.addEventListener('click', () => {
+    text.value = editor.shown;
+    element.querySelector('.rule-error').textContent = '';
+    editor.sync();
+  });
+  return editor;
 }
 
 class ControllerCard {
@@ -329,6 +401,8 @@ class ControllerCard {
     this.plots = controller.inputs.map((input) => new MembershipPlot(
       this.element.querySelector('.inputs'), controller.id, structuredClone(input),
       (index, value, phase, event) => handlers.onKnot(controller.id, input.name, index, value, phase, event)));
+    this.rules = ruleEditor(this.element.querySelector('.rules > div'), controller,
+      (id, rules, refused) => handlers.onRules(id, rules, refused));
     this.buildWords(controller, null);
     this.refresh(controller);
   }
@@ -367,7 +441,9 @@ class ControllerCard {
   refresh(controller) {
     this.data = controller;
     drawResponse(this.element.querySelector('.response'), controller);
-    this.element.querySelector('.rules > div').innerHTML = rulesHtml(controller);
+    this.element.querySelector('.rule-grid-box').innerHTML = rulesHtml(controller);
+    this.rules.show(controller.rules);
+    this.element.querySelector('.rules > summary').textContent = `${controller.rules.text.length} rules`;
   }
 
   // The server's new view of this controller.

@@ -293,6 +293,16 @@ function onWord(controller, variable, term, value, phase) {
     performance.now());
 }
 
+// Rules typed in a controller's card: one step of the history; a refusal (a word the parser
+// does not know) is shown under the text through `refused`, which keeps the text as typed.
+function onRules(controller, rules, refused) {
+  request('/api/rules', { controller, rules }, applyEdit, performance.now(), undefined, (error) => {
+    refused(error.message);
+    showError(error);
+    return true;
+  });
+}
+
 function onSetParameter(name, value, phase) {
   editInGesture(`set/${name}`, { set: name }, value, phase, performance.now());
 }
@@ -556,7 +566,7 @@ async function start() {
   side = new SideView($('#side-canvas'));
   curves = new Curves($('#curves'));
   panel = new ControllerPanel($('#controller-list'), {
-    onKnot, onWord, onClamped: (text) => showMessage(text, 'error'),
+    onKnot, onWord, onRules, onClamped: (text) => showMessage(text, 'error'),
   });
   wireToolbar();
   wirePlayback();

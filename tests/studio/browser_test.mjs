@@ -88,10 +88,12 @@ page.on('pageerror', (error) => pageErrors.push(error.message));
 // While the test has stopped the server, the browser logs the requests it could not make.
 let serverAway = false;
 let expectConflict = false;
+let expectRefusal = false; // a rule refused on purpose: the browser logs its 422
 page.on('console', (message) => {
   if (message.type() !== 'error') return;
   if (serverAway && /ERR_CONNECTION_REFUSED|ERR_CONNECTION_RESET|ERR_EMPTY_RESPONSE/.test(message.text())) return;
   if (expectConflict && /status of 409/.test(message.text())) return;
+  if (expectRefusal && /status of 422/.test(message.text())) return;
   pageErrors.push(message.text());
 });
 
@@ -264,6 +266,51 @@ try {
   await step.press('Enter');
   await idle();
   check((await studio(() => window.studio.state.settings.speed)) === 0, 'a step typed walks by step length again');
+
+  // ---- a rule edited as text: refused naming the rule and the word, then taken, then undone ----
+  {
+    const card = page.locator('.controller[data-controller="swing_knee"]');
+    await card.locator('details.rules > summary').click();
+    const rulesText = card.locator('textarea.rule-edit');
+    const original = await rulesText.inputValue();
+    const lines = original.split('\n');
+    check(lines.length === 12 && lines[4] === 'if delta is center and knee is bent then velocity is extend',
+      'the swing knee\'s 12 rules are shown as text, one a line');
+    const errorsBefore = await studio(() => window.studio.errors.length);
+    const undoBeforeRule = (await studio(() => window.studio.state.history)).undo;
+    const curveBeforeRule = await kneeCurve();
+    lines[4] = 'if delta is center and knee is bent then velocity is fastt';
+    await rulesText.fill(lines.join('\n'));
+    expectRefusal = true;
+    await card.locator('button.apply-rules').click();
+    await idle();
+    expectRefusal = false;
+    const said = await card.locator('.rule-error').textContent();
+    check(said.includes('rule 5') && said.includes("'fastt'") && said.includes('extend_fast'),
+      `a rule with an unknown word is refused, naming the rule, the word and the terms ("${said}")`);
+    check(await rulesText.inputValue() === lines.join('\n'), 'the refused text stays as typed');
+    check((await studio(() => window.studio.state.history)).undo === undoBeforeRule, 'a refused rule is no step of the history');
+    await shot('rule_refused.png');
+    lines[4] = 'if delta is center and knee is bent then velocity is extend_fast';
+    await rulesText.fill(lines.join('\n'));
+    await rulesText.press('Control+Enter');
+    await idle();
+    const history = await studio(() => window.studio.state.history);
+    check(history.undo === undoBeforeRule + 1 && history.undo_label === 'swing_knee: rule 5 edited',
+      `the rule edited is one step of the history ("${history.undo_label}")`);
+    check(JSON.stringify(await kneeCurve()) !== JSON.stringify(curveBeforeRule), 'the rule edited changes the knee curve');
+    check(await card.locator('.rule-error').textContent() === '', 'the refusal is gone once the rules are taken');
+    check((await studio(() => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee').rules.text[4]))
+      === lines[4], 'the server holds the rule as typed');
+    await page.click('#undo');
+    await idle();
+    check(JSON.stringify(await kneeCurve()) === JSON.stringify(curveBeforeRule), 'undo brings the knee curve back exactly');
+    check(await page.locator('.controller[data-controller="swing_knee"] textarea.rule-edit').inputValue() === original,
+      'undo brings the rule text back');
+    const errors = await studio(() => window.studio.errors.slice());
+    check(errors.length === errorsBefore + 1 && errors[errorsBefore].includes('fastt'), 'the refusal was shown once');
+    await page.evaluate((n) => window.studio.errors.splice(n, 1), errorsBefore);
+  }
 
   // ---- edit-to-redraw latency over 10 cycles: isolated edits, each a small drag ----
   await studio(() => {

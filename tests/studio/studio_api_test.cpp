@@ -197,6 +197,138 @@ TEST(StudioApi, MovingAKnotChangesTheControllerAndTheWalkAndUndoRestoresBoth) {
   EXPECT_EQ(refusal([&] { studio.redo(); }), std::make_pair(409, std::string("redo")));
 }
 
+std::vector<std::string> rules_of(const json& controller) {
+  return controller.at("rules").at("text").get<std::vector<std::string>>();
+}
+
+TEST(StudioApi, RulesAreEditedAddedAndDeletedAsStepsOfTheHistory) {
+  Studio studio(quick("rules"));
+  const json before = studio.walk().at("walk");
+  std::vector<std::string> rules = rules_of(controller(studio.state(), "swing_knee"));
+  ASSERT_EQ(rules.size(), 12u);
+  EXPECT_EQ(rules[4], "if delta is center and knee is bent then velocity is extend");
+
+  // Edited: the knee unfolds fast mid-swing; the walk changes, one step "rule 5 edited".
+  rules[4] = "if delta is center and knee is bent then velocity is extend_fast";
+  const json edited = studio.edit_rules({{"controller", "swing_knee"}, {"rules", rules}});
+  EXPECT_EQ(rules_of(edited.at("controller")), rules);
+  EXPECT_NE(edited.at("walk").at("curves").at("knee"), before.at("curves").at("knee"));
+  EXPECT_EQ(edited.at("history").at("undo"), 1);
+  EXPECT_EQ(edited.at("history").at("undo_label"), "swing_knee: rule 5 edited");
+
+  // Added (with a weight, spaced loosely: the parser's text is kept), then deleted.
+  std::vector<std::string> more = rules;
+  more.insert(more.begin() + 2, "if  delta is start and knee is very bent then velocity is flex");
+  const json added = studio.edit_rules({{"controller", "swing_knee"}, {"rules", more}});
+  EXPECT_EQ(added.at("history").at("undo_label"), "swing_knee: rule 3 added");
+  EXPECT_EQ(rules_of(added.at("controller")).at(2),
+            "if delta is start and knee is very bent then velocity is flex");
+  std::vector<std::string> fewer = rules;
+  fewer.erase(fewer.begin());
+  const json deleted = studio.edit_rules({{"controller", "swing_knee"}, {"rules", fewer}});
+  EXPECT_EQ(deleted.at("history").at("undo_label"), "swing_knee: rules edited (13 -> 11 rules)");
+  EXPECT_EQ(rules_of(deleted.at("controller")), fewer);
+  const json one_deleted =
+      studio.edit_rules({{"controller", "swing_knee"},
+                         {"rules", std::vector<std::string>(fewer.begin(), fewer.end() - 1)}});
+  EXPECT_EQ(one_deleted.at("history").at("undo_label"), "swing_knee: rule 11 deleted");
+  EXPECT_EQ(one_deleted.at("history").at("undo"), 4);
+
+  // The same rules again: no step.
+  const json same =
+      studio.edit_rules({{"controller", "swing_knee"},
+                         {"rules", std::vector<std::string>(fewer.begin(), fewer.end() - 1)}});
+  EXPECT_EQ(same.at("history").at("undo"), 4);
+
+  // Undo all the way: the rules and the walk as they were.
+  for (int i = 0; i < 3; ++i)
+    studio.undo();
+  const json undone = studio.undo();
+  EXPECT_EQ(rules_of(controller(undone, "swing_knee")).at(4),
+            "if delta is center and knee is bent then velocity is extend");
+  EXPECT_EQ(timeless(undone.at("walk")), timeless(before));
+  const json redone = studio.redo();
+  EXPECT_EQ(timeless(redone.at("walk")), timeless(edited.at("walk")));
+}
+
+TEST(StudioApi, ARuleThatDoesNotReadIsRefusedNamingItsLineAndWord) {
+  Studio studio(quick("rule-refusals"));
+  const json state = studio.state();
+  const json walk = studio.walk();
+  const std::vector<std::string> rules = rules_of(controller(state, "swing_knee"));
+  const auto with = [&](std::size_t i, const std::string& text) {
+    std::vector<std::string> r = rules;
+    r.at(i) = text;
+    return json{{"controller", "swing_knee"}, {"rules", r}};
+  };
+  const auto message = [&](const json& request) -> std::string {
+    try {
+      studio.edit_rules(request);
+    } catch (const RequestError& e) {
+      EXPECT_EQ(e.field(), "rules") << e.what();
+      EXPECT_EQ(e.status(), 422) << e.what();
+      return e.what();
+    }
+    ADD_FAILURE() << "taken: " << request.dump();
+    return "";
+  };
+  EXPECT_EQ(message(with(2, "if delta is start and knee is deep then velocity is fastt")),
+            "rule 3: 'fastt' is neither a hedge nor a term of 'velocity' (its terms: flex_fast, "
+            "flex, hold, extend, extend_fast)");
+  EXPECT_EQ(message(with(0, "if delta is strat and knee is straight then velocity is hold")),
+            "rule 1: 'strat' is neither a hedge nor a term of 'delta' (its terms: start, center, "
+            "end, past)");
+  EXPECT_THAT(message(with(5, "if speed is high then velocity is hold")),
+              HasSubstr("rule 6: expected an input or output variable, 'and' or 'or' but found "
+                        "'speed' (inputs: delta, knee; outputs: velocity)"));
+  EXPECT_EQ(message(with(1, "if delta is start then")), "rule 2: nothing follows 'then'");
+  EXPECT_EQ(message(with(1, "when delta is start then velocity is hold")),
+            "rule 2 must start with 'if', found 'when'");
+  EXPECT_THAT(message(with(1, "")), HasSubstr("empty rule"));
+  EXPECT_THAT(message(with(3, "if delta is start then velocity is hold\nif")),
+              HasSubstr("rule 4 holds a line break"));
+  EXPECT_THAT(message(with(3, "if delta is start then velocity is hold # why")),
+              HasSubstr("rule 4 holds"));
+  EXPECT_THAT(
+      message(with(3, "if delta is start then velocity is hold with " + std::string(1000, '1'))),
+      HasSubstr("rule 4 is longer than 1000 characters"));
+  EXPECT_THAT(message({{"controller", "swing_knee"}, {"rules", json::array()}}),
+              HasSubstr("1 to 400 rules, got 0"));
+  EXPECT_THAT(
+      message({{"controller", "swing_knee"}, {"rules", std::vector<std::string>(401, rules[0])}}),
+      HasSubstr("got 401"));
+
+  EXPECT_EQ(refusal([&] {
+              studio.edit_rules({{"controller", "swing_kne"}, {"rules", rules}});
+            }),
+            std::make_pair(422, std::string("controller")));
+  EXPECT_EQ(refusal([&] {
+              studio.edit_rules({{"controller", 3}, {"rules", rules}});
+            }),
+            std::make_pair(400, std::string("controller")));
+  EXPECT_EQ(refusal([&] {
+              studio.edit_rules({{"controller", "swing_knee"}});
+            }),
+            std::make_pair(400, std::string("rules")));
+  EXPECT_EQ(refusal([&] {
+              studio.edit_rules({{"controller", "swing_knee"}, {"rules", rules[0]}});
+            }),
+            std::make_pair(400, std::string("rules")));
+  EXPECT_EQ(refusal([&] {
+              studio.edit_rules({{"controller", "swing_knee"}, {"rules", {rules[0], 5}}});
+            }),
+            std::make_pair(400, std::string("rules")));
+  EXPECT_EQ(
+      refusal([&] {
+        studio.edit_rules({{"controller", "swing_knee"}, {"rules", rules}, {"gesture", "g1"}});
+      }),
+      std::make_pair(400, std::string("gesture")));
+  EXPECT_EQ(refusal([&] { studio.edit_rules(json::array()); }).first, 400);
+  // Nothing changed.
+  EXPECT_EQ(studio.state(), state);
+  EXPECT_EQ(timeless(studio.walk().at("walk")), timeless(walk.at("walk")));
+}
+
 TEST(StudioApi, TheEndKnotsCarryTheInputsRange) {
   Studio studio(quick("end_knot"));
   const json answer = studio.edit(

@@ -403,6 +403,25 @@ json Studio::edit(const json& request) {
   return answer;
 }
 
+json Studio::edit_rules(const json& request) {
+  Session& s = *session_;
+  detail::Edited edited = detail::apply_rules(s.current, request);
+  if (!edited.controller.empty()) {
+    try {
+      detail::check_walkable(edited.set, s.settings, s.ground);
+    } catch (const std::invalid_argument& e) {
+      throw RequestError(422, "rules", std::string("the set would not walk: ") + e.what());
+    }
+    s.replace(std::move(edited.set), edited.label());
+  }
+  const std::string id = detail::string_field(request, "controller");
+  json answer = {{"history", s.history()}, {"walk", s.current_walk()}};
+  for (const detail::ControllerPlace& place : detail::controller_places(s.current)) {
+    if (place.id == id) answer["controller"] = detail::controller_json(s.current, place);
+  }
+  return answer;
+}
+
 json Studio::change_settings(const json& request) {
   Session& s = *session_;
   detail::check_fields(request, {"step", "speed", "stature", "terrain", "cycles", "reference"});

@@ -62,8 +62,10 @@ struct Limits {
   // A membership function's knot or parameter, an output word's value: finite and within this
   // of zero (an input's degrees or an output's degrees per second).
   static constexpr double kLargestValue = 1e4;
-  static constexpr std::size_t kLongestText = 200;  // terrain specs, names, gesture ids
-  static constexpr std::size_t kHistory = 200;      // undo steps kept
+  static constexpr std::size_t kLongestText = 200;   // terrain specs, names, gesture ids
+  static constexpr std::size_t kHistory = 200;       // undo steps kept
+  static constexpr std::size_t kMostRules = 400;     // rules of one controller in an edit
+  static constexpr std::size_t kLongestRule = 1000;  // characters of one rule
 };
 
 // A file to download: its name, MIME type and bytes.
@@ -100,6 +102,11 @@ class Studio {
   //                                ControllerSet::manifest_numbers() ("inertia_s", ...)
   // and may carry "gesture": ID, so that the edits of one drag are one step of the history.
   nlohmann::json edit(const nlohmann::json& request);
+  // {"controller": ID, "rules": [TEXT, ...]}: the controller's rules replaced, each read by the
+  // library's FLL rule parser; one step of the history ("swing_knee: rule 3 edited"). Answers as
+  // edit() does. A rule that does not read (an unknown word, a term its variable lacks) is
+  // refused with 422 naming "rules", the rule's number and the word.
+  nlohmann::json edit_rules(const nlohmann::json& request);
   // {"step": M, "speed": M/S, "stature": M, "terrain": SPEC, "cycles": N}, any of them: the new
   // settings and walk. A speed above 0 walks by speed (the set's stride gives the step), a step
   // or a speed of 0 by step length.
