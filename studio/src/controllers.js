@@ -59,11 +59,14 @@ export function moveKnot(input, index, value) {
 }
 
 class MembershipPlot {
-  // `onDrag(index, value, phase, event)` is called as a knot is dragged (phase 'move', then 'end').
-  constructor(parent, controllerId, input, onDrag) {
+  // `onDrag(index, value, phase, event)` is called as a knot is dragged (phase 'move', then 'end');
+  // `onType(index, value, refused)` when a knot's value is typed into its field (`refused(text)`
+  // shows the server's reason beside the fields).
+  constructor(parent, controllerId, input, onDrag, onType) {
     this.controllerId = controllerId;
     this.input = input;
     this.onDrag = onDrag;
+    this.onType = onType;
     this.figure = document.createElement('figure');
     this.figure.className = 'mf';
     parent.append(this.figure);
@@ -73,6 +76,9 @@ class MembershipPlot {
     const caption = document.createElement('figcaption');
     caption.innerHTML = `<b>${escapeHtml(input.name)}</b> ${escapeHtml(input.description || '')}`;
     this.figure.append(caption);
+    this.fields = document.createElement('div');
+    this.fields.className = 'knot-fields';
+    this.figure.append(this.fields);
     // The x span is fixed while the card lives, so a drag maps the pointer steadily.
     const [low, high] = input.domain;
     const pad = (high - low) * 0.06;
@@ -148,6 +154,43 @@ class MembershipPlot {
       t.textContent = niceNumber(v);
     }
     this.drawHandles();
+    this.drawFields();
+  }
+
+  // A field a knot: its exact value typed, taken on Enter or leaving the field. The server keeps
+  // the partition's order: a value past a neighbour's knot is refused with the reason, shown
+  // under the fields, and the field shows the knot where it is.
+  drawFields() {
+    const knots = this.input.partition ? this.input.knots : [];
+    if (this.fields.querySelectorAll('input').length !== knots.length) {
+      this.fields.innerHTML = knots.map((_, i) => `<label title="${escapeHtml(this.input.terms[i].name)} peaks at">
+        <span>${escapeHtml(readable(this.input.terms[i].name))}</span>
+        <input type="number" step="any" class="knot-value" data-controller="${escapeHtml(this.controllerId)}"
+          data-variable="${escapeHtml(this.input.name)}" data-knot="${i}"></label>`).join('') +
+        '<p class="knot-error" role="alert"></p>';
+      this.fields.querySelectorAll('input').forEach((field, i) => {
+        field.addEventListener('keydown', (event) => event.stopPropagation());
+        field.addEventListener('change', () => {
+          const error = this.fields.querySelector('.knot-error');
+          const value = Number(field.value);
+          if (field.value.trim() === '' || !Number.isFinite(value)) {
+            error.textContent = `${readable(this.input.terms[i].name)}: "${field.value}" is not a number`;
+            field.value = Number(this.input.knots[i].toPrecision(12));
+            return;
+          }
+          error.textContent = '';
+          if (value === this.input.knots[i]) return;
+          this.onType(i, value, (text) => {
+            error.textContent = text;
+            field.value = Number(this.input.knots[i].toPrecision(12));
+            field.select();
+          });
+        });
+      });
+    }
+    this.fields.querySelectorAll('input').forEach((field, i) => {
+      if (document.activeElement !== field) field.value = Number(knots[i].toPrecision(12));
+    });
   }
 
   drawHandles() {
@@ -226,7 +269,7 @@ class MembershipPlot {
     const clamped = Math.min(Math.max(value, low), high);
     // Three significant decimals of the span: values a person reads, as the tuner writes them.
     const unit = 10 ** (Math.floor(Math.log10(span)) - 3);
-    return Math.round(clamped / unit) * unit;
+    return Number((Math.round(clamped / unit) * unit).toPrecision(12));
   }
 
   // New data from the server; a knot being dragged keeps the pointer's value.
@@ -400,7 +443,8 @@ class ControllerCard {
     this.data = controller;
     this.plots = controller.inputs.map((input) => new MembershipPlot(
       this.element.querySelector('.inputs'), controller.id, structuredClone(input),
-      (index, value, phase, event) => handlers.onKnot(controller.id, input.name, index, value, phase, event)));
+      (index, value, phase, event) => handlers.onKnot(controller.id, input.name, index, value, phase, event),
+      (index, value, refused) => handlers.onKnotTyped(controller.id, input.name, index, value, refused)));
     this.rules = ruleEditor(this.element.querySelector('.rules > div'), controller,
       (id, rules, refused) => handlers.onRules(id, rules, refused));
     this.buildWords(controller, null);
@@ -434,6 +478,7 @@ class ControllerCard {
       c.onChange((value) => this.handlers.onWord(controller.id, out.name, word.name, value, 'move'));
       c.onFinishChange((value) => this.handlers.onWord(controller.id, out.name, word.name, value, 'end'));
       if (this.handlers.onClamped) sayWhenClamped(c, readable(word.name), this.handlers.onClamped);
+      exactWhenTyped(c);
       this.controllers[word.name] = c;
     }
   }
@@ -506,6 +551,23 @@ export class ControllerPanel {
       card.setCompared(other || null);
     }
   }
+}
+
+// lil-gui rounds a number typed into a slider's field to the slider's step (37.625 became 38 on
+// a slider of whole numbers): typed, a number is taken as it is; dragged, the slider keeps its
+// round steps. 'beforeinput' comes before lil-gui's own 'input' handler, which snaps.
+export function exactWhenTyped(control) {
+  const input = control.$input;
+  if (!input || typeof control._snap !== 'function') return;
+  const snap = control._snap.bind(control);
+  let typing = false;
+  input.addEventListener('beforeinput', () => {
+    typing = true;
+  });
+  input.addEventListener('blur', () => {
+    typing = false;
+  });
+  control._snap = (value) => (typing ? value : snap(value));
 }
 
 // lil-gui puts a number typed into a slider's field within the slider's range without a word

@@ -293,6 +293,17 @@ function onWord(controller, variable, term, value, phase) {
     performance.now());
 }
 
+// A knot's value typed: one step of the history; a refusal (past a neighbour) is shown beside the
+// fields through `refused`, and the page shows the server's controllers again.
+function onKnotTyped(controller, variable, knot, value, refused) {
+  request('/api/edit', { controller, variable, knot, value }, applyEdit, performance.now(), undefined,
+    (error) => {
+      refused(error.message);
+      showError(error);
+      return true;
+    });
+}
+
 // Rules typed in a controller's card: one step of the history; a refusal (a word the parser
 // does not know) is shown under the text through `refused`, which keeps the text as typed.
 function onRules(controller, rules, refused) {
@@ -566,7 +577,7 @@ async function start() {
   side = new SideView($('#side-canvas'));
   curves = new Curves($('#curves'));
   panel = new ControllerPanel($('#controller-list'), {
-    onKnot, onWord, onRules, onClamped: (text) => showMessage(text, 'error'),
+    onKnot, onKnotTyped, onWord, onRules, onClamped: (text) => showMessage(text, 'error'),
   });
   wireToolbar();
   wirePlayback();

@@ -267,6 +267,39 @@ try {
   await idle();
   check((await studio(() => window.studio.state.settings.speed)) === 0, 'a step typed walks by step length again');
 
+  // ---- exact values typed: an output word off the slider's steps, a knot, a knot out of order ----
+  {
+    const exact = await typeWord('hold', '37.625');
+    check(exact === 37.625, `an output word typed is taken exactly, not rounded to the slider's step (${exact})`);
+    const field = page.locator('input.knot-value[data-controller="swing_knee"][data-variable="delta"][data-knot="1"]');
+    await field.scrollIntoViewIfNeeded();
+    const undoBeforeKnot = (await studio(() => window.studio.state.history)).undo;
+    const knotWas = await knotValue();
+    const errorsBefore = await studio(() => window.studio.errors.length);
+    expectRefusal = true;
+    await field.fill('1.3');
+    await field.press('Enter');
+    await idle();
+    expectRefusal = false;
+    const said = await page.locator('.controller[data-controller="swing_knee"] .knot-error').first().textContent();
+    check(said.includes('must lie between') && said.includes('1.29') && await knotValue() === knotWas &&
+      (await studio(() => window.studio.state.history)).undo === undoBeforeKnot,
+    `a knot typed past its neighbour is refused with the reason, nothing changed ("${said}")`);
+    check(Number(await field.inputValue()) === knotWas, `the refused knot's field shows the knot where it is (${knotWas})`);
+    await field.fill('0.4375');
+    await field.press('Enter');
+    await idle();
+    const history = await studio(() => window.studio.state.history);
+    check(await knotValue() === 0.4375 && history.undo === undoBeforeKnot + 1 && history.undo_label.includes('-> 0.4375'),
+      `a knot typed is taken exactly, one step of the history ("${history.undo_label}")`);
+    const parameters = await studio(() => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee').inputs[0].terms[0].parameters);
+    check(parameters[2] === 0.4375, 'the neighbour\'s foot moved with the typed knot');
+    await page.click('#undo');
+    await idle();
+    check(await knotValue() === knotWas && Number(await field.inputValue()) === knotWas, 'undo puts the typed knot back');
+    await page.evaluate((n) => window.studio.errors.splice(n, 1), errorsBefore);
+  }
+
   // ---- a rule edited as text: refused naming the rule and the word, then taken, then undone ----
   {
     const card = page.locator('.controller[data-controller="swing_knee"]');
