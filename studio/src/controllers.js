@@ -72,6 +72,7 @@ class MembershipPlot {
     parent.append(this.figure);
     this.svg = svg('svg', { viewBox: `0 0 ${WIDTH} ${HEIGHT}`, class: 'mf-plot' }, this.figure);
     this.shapes = svg('g', {}, this.svg);
+    this.now = svg('g', { class: 'mf-now' }, this.svg);
     this.handles = svg('g', {}, this.svg);
     const caption = document.createElement('figcaption');
     caption.innerHTML = `<b>${escapeHtml(input.name)}</b> ${escapeHtml(input.description || '')}`;
@@ -191,6 +192,18 @@ class MembershipPlot {
     this.fields.querySelectorAll('input').forEach((field, i) => {
       if (document.activeElement !== field) field.value = Number(knots[i].toPrecision(12));
     });
+  }
+
+  // The input's value at the frame shown: a line across the terms, a dot where it meets each.
+  setNow(value) {
+    this.now.replaceChildren();
+    if (value === null || value === undefined) return;
+    const [low, high] = this.domain;
+    const x = this.x(Math.min(Math.max(value, low), high));
+    svg('line', { x1: x, x2: x, y1: MARGIN.top - 2, y2: HEIGHT - MARGIN.bottom, class: 'mf-now-line' }, this.now);
+    const label = svg('text', { x: x + 3, y: HEIGHT - MARGIN.bottom - 3, class: 'mf-now-value' }, this.now);
+    label.textContent = niceNumber(value);
+    this.now.dataset.value = value;
   }
 
   drawHandles() {
@@ -361,7 +374,7 @@ function rulesHtml(controller) {
 // reads them with the library's own rule parser: a rule it cannot read comes back as a refusal
 // naming the rule's number and the word, shown under the text, which stays as typed.
 function ruleEditor(element, controller, onRules) {
-  element.innerHTML = `<div class="rule-grid-box"></div>
+  element.innerHTML = `<div class="rule-grid-box"></div><div class="fired"></div>
     <textarea class="rule-edit" spellcheck="false" aria-label="rules of ${escapeHtml(controller.title)}"></textarea>
     <div class="rule-actions"><button type="button" class="apply-rules" disabled>Apply rules</button>
     <button type="button" class="revert-rules" disabled>Revert</button>
@@ -491,6 +504,27 @@ class ControllerCard {
     this.element.querySelector('.rules > summary').textContent = `${controller.rules.text.length} rules`;
   }
 
+  // Which rules fire at the frame shown (the server's answer for this controller, or null): the
+  // inputs marked on their plots, each rule's strength as a bar under its text.
+  showFired(now, time) {
+    const box = this.element.querySelector('.fired');
+    if (!now || now.rules.length !== this.data.rules.text.length) {
+      this.plots.forEach((plot) => plot.setNow(null));
+      box.replaceChildren();
+      return;
+    }
+    this.plots.forEach((plot, i) => plot.setNow(now.inputs[i]));
+    const strongest = Math.max(...now.rules);
+    const inputs = this.data.inputs.map((input, i) => `${escapeHtml(input.name)} ${niceNumber(now.inputs[i])}`).join(', ');
+    box.innerHTML = `<p class="fired-caption">At ${time.toFixed(2)} s, the ${now.leg} leg: ${inputs} → ${niceNumber(now.output)}</p>
+      <ol class="fired-rules">${this.data.rules.text.map((text, r) => {
+        const w = now.rules[r];
+        return `<li class="${w > 0 && w === strongest ? 'strongest' : ''}${w === 0 ? ' idle' : ''}" data-strength="${w}">
+          <span class="fired-bar" style="width:${(100 * Math.min(1, w)).toFixed(1)}%"></span>
+          <span class="fired-text">${escapeHtml(text)}</span><span class="fired-value">${w.toFixed(2)}</span></li>`;
+      }).join('')}</ol>`;
+  }
+
   // The server's new view of this controller.
   update(controller) {
     controller.inputs.forEach((input, i) => this.plots[i].update(structuredClone(input)));
@@ -543,6 +577,11 @@ export class ControllerPanel {
   update(controller) {
     const card = this.cards.get(controller.id);
     if (card) card.update(controller);
+  }
+
+  // POST /api/fired's answer: the slots' controllers show it; the terrain words' show nothing.
+  showFired(answer) {
+    for (const [id, card] of this.cards) card.showFired(answer ? answer.controllers[id] || null : null, answer ? answer.time : 0);
   }
 
   setCompared(compareSet) {

@@ -525,8 +525,38 @@ function frame() {
     timed(studio.frameMs.view3d, () => view3d.render(t));
     timed(studio.frameMs.side, () => side.render(t));
     curves.showCycle(motion.cyclePercent(t));
+    askFired(t);
   }
   requestAnimationFrame(frame);
+}
+
+// ---- which rules fire now --------------------------------------------------------------------
+
+// The server sends, for the frame asked, each slot controller's inputs and each rule's firing
+// strength as the library evaluates them (POST /api/fired): the page computes none itself, so the
+// bars are the library's numbers at the inputs marked, whatever the terms' shapes, hedges or
+// operators (a second evaluator in the page could drift from the engine's). One frame's answer is
+// about 2 KB; the page asks only while a controller's rules are open, one request at a time, for
+// the frame shown when the last answer came (at most one a frame while playing).
+const fired = { frame: -1, walk: null, out: false, shown: null };
+studio.fired = fired;
+function askFired(t) {
+  if (fired.out || busy || !document.querySelector('.controller details.rules[open]')) return;
+  const index = Math.round(t * 30);
+  if (index === fired.frame && fired.walk === studio.walk) return;
+  fired.out = true;
+  const walk = studio.walk;
+  api.post('/api/fired', { time: index / 30 }).then((answer) => {
+    fired.frame = index;
+    fired.walk = walk;
+    fired.shown = answer;
+    if (walk === studio.walk) panel.showFired(answer);
+  }).catch(() => {
+    // The server away or busy with another set: the next frame asks again.
+    fired.frame = -1;
+  }).finally(() => {
+    fired.out = false;
+  });
 }
 
 // Scrubbing: drag across the side view to move through the walk (it pauses); a double click, or

@@ -150,6 +150,64 @@ try {
     'the contact figures show the default walk meets its bounds');
   await shot('studio_loaded.png');
 
+  // ---- which rules fire at a frame: the page's bars are the library's strengths ----
+  {
+    const card = page.locator('.controller[data-controller="swing_knee"]');
+    await card.locator('details.rules > summary').click();
+    await studio(() => window.studio.seek(2.0));
+    await page.waitForFunction(() => window.studio.fired.frame === 60 && window.studio.fired.walk === window.studio.walk &&
+      document.querySelectorAll('.controller[data-controller="swing_knee"] .fired-rules li').length === 12,
+    null, { timeout: 10000 });
+    const shown = await page.evaluate(() => {
+      const c = document.querySelector('.controller[data-controller="swing_knee"]');
+      return {
+        strengths: [...c.querySelectorAll('.fired-rules li')].map((li) => Number(li.dataset.strength)),
+        markers: [...c.querySelectorAll('g.mf-now')].map((g) => Number(g.dataset.value)),
+        answer: window.studio.fired.shown.controllers.swing_knee,
+        controller: window.studio.state.set.controllers.find((k) => k.id === 'swing_knee'),
+      };
+    });
+    check(shown.markers.length === 2 && shown.markers[0] === shown.answer.inputs[0] && shown.markers[1] === shown.answer.inputs[1],
+      `both inputs are marked on their plots at the frame's values (${shown.markers.join(', ')})`);
+    // Each rule: the product of its two terms' triangles at the inputs (the set's AlgebraicProduct).
+    const triangle = ([a, b, c], x) => (x <= a || x >= c ? 0 : x <= b ? (x - a) / (b - a) : (c - x) / (c - b));
+    const [delta, knee] = shown.controller.inputs;
+    const clampTo = (input, x) => Math.min(Math.max(x, input.range[0]), input.range[1]); // lock-range
+    const expected = shown.controller.rules.text.map((text) => {
+      const [, d, k] = /delta is (\w+) and knee is (\w+)/.exec(text);
+      return triangle(delta.terms.find((t) => t.name === d).parameters, clampTo(delta, shown.answer.inputs[0])) *
+        triangle(knee.terms.find((t) => t.name === k).parameters, clampTo(knee, shown.answer.inputs[1]));
+    });
+    const worst = Math.max(...expected.map((e, r) => Math.abs(e - shown.strengths[r])));
+    check(worst < 1e-4 && Math.max(...shown.strengths) > 0.2,
+      `the rules' strengths shown are their terms' memberships at the inputs (largest difference ${worst.toExponential(1)})`);
+    // The library's own evaluation of the controller at those inputs (fuzzygait fuzzy eval of the
+    // set's FLL as saved) is the strengths' weighted average of the words.
+    await page.evaluate(() => fetch('/api/save', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+      body: JSON.stringify({ name: 'fired_check' }) }));
+    const words = Object.fromEntries(shown.controller.outputs[0].words.map((w) => [w.name, w.value]));
+    const weighted = shown.controller.rules.text.reduce((sum, text, r) => sum + shown.strengths[r] * words[/velocity is (\w+)/.exec(text)[1]], 0) /
+      shown.strengths.reduce((a, b) => a + b, 0);
+    const table = await new Promise((resolve) => {
+      const child = spawn(program, ['fuzzy', 'eval', join(workspace, 'fired_check', 'swing_knee.fll'), '--data', '-']);
+      let out = '';
+      child.stdout.on('data', (chunk) => (out += chunk));
+      child.on('close', () => resolve(out));
+      child.stdin.end(`delta knee\n${shown.answer.inputs[0]} ${shown.answer.inputs[1]}\n`);
+    });
+    const library = Number(table.trim().split('\n')[1].trim().split(/\s+/)[2]);
+    check(Math.abs(library - shown.answer.output) < 1e-3 && Math.abs(library - weighted) < 0.05,
+      `the controller's output there by fuzzygait fuzzy eval (${library}) is the one shown (${shown.answer.output}) and the strengths' weighted words (${weighted.toFixed(3)})`);
+    await shot('fired_rules.png');
+    // Scrubbed to another frame, the bars follow.
+    await studio(() => window.studio.seek(2.5));
+    await page.waitForFunction(() => window.studio.fired.frame === 75, null, { timeout: 10000 });
+    const later = await page.evaluate(() => [...document.querySelectorAll('.controller[data-controller="swing_knee"] .fired-rules li')]
+      .map((li) => Number(li.dataset.strength)));
+    check(JSON.stringify(later) !== JSON.stringify(shown.strengths), 'at another frame other rules fire');
+    await card.locator('details.rules > summary').click();
+  }
+
   // ---- drag a knot: the curve and the walk change ----
   const knotBefore = await knotValue();
   const curveBefore = await kneeCurve();

@@ -17,6 +17,7 @@
 
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/eval/motion.hpp"
+#include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/io/controller_files.hpp"
 #include "fuzzygait/io/normative.hpp"
@@ -327,6 +328,111 @@ TEST(StudioApi, ARuleThatDoesNotReadIsRefusedNamingItsLineAndWord) {
   // Nothing changed.
   EXPECT_EQ(studio.state(), state);
   EXPECT_EQ(timeless(studio.walk().at("walk")), timeless(walk.at("walk")));
+}
+
+// The knee's flexion (degrees) at a page frame, from the walk's points of the leg (0 left).
+double knee_flexion(const json& frames, std::size_t frame, std::size_t leg) {
+  const json& legs = frames.at("legs");
+  const std::size_t at = (frame * 2 + leg) * 12;  // hip, knee, ankle, heel, ball, tip as x, y
+  const auto x = [&](std::size_t k) { return legs.at(at + 2 * k).get<double>(); };
+  const auto y = [&](std::size_t k) { return legs.at(at + 2 * k + 1).get<double>(); };
+  const double thigh = std::atan2(x(1) - x(0), -(y(1) - y(0)));
+  const double shank = std::atan2(x(2) - x(1), -(y(2) - y(1)));
+  return (thigh - shank) * 180.0 / M_PI;
+}
+
+TEST(StudioApi, FiredRulesAreTheLibrarysEvaluationAtTheInputsTheWalkRead) {
+  Studio studio(quick("fired"));
+  const json frames = studio.walk().at("walk").at("frames");
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  int checked_frames = 0;
+  for (const double time : {0.0, 0.5, 1.03, 2.0, 2.5, 3.3}) {
+    const json fired = studio.fired({{"time", time}});
+    const auto frame = fired.at("frame").get<std::size_t>();
+    EXPECT_EQ(frame, static_cast<std::size_t>(std::lround(time * 30.0)));
+    EXPECT_NEAR(fired.at("time").get<double>(), frames.at("time").at(frame).get<double>(), 1e-4);
+    const json& controllers = fired.at("controllers");
+    EXPECT_EQ(controllers.size(), 8u);
+    for (int slot = 0; slot < gait::kSlotCount; ++slot) {
+      const std::string id(gait::slot_name(slot));
+      const json& c = controllers.at(id);
+      const gait::Controller& controller = set.controllers.at(static_cast<std::size_t>(slot));
+      const fuzzy::Engine& engine = controller.engine();
+      ASSERT_EQ(c.at("inputs").size(), controller.input_count()) << id;
+      ASSERT_EQ(c.at("rules").size(), engine.rule_blocks.at(0).rules.size()) << id;
+      // The leg: the one in the slot's phase (the walk's contacts), the left when both are.
+      const bool swing = id.starts_with("swing");
+      const json& contact = frames.at("contact");
+      const bool left_swings = contact.at(2 * frame) == 0;
+      const std::string leg = left_swings == swing ? "left" : "right";
+      EXPECT_EQ(c.at("leg"), leg) << id << " at " << time;
+      // The inputs are that leg's at that frame: its knee as the walk's points bend it.
+      for (std::size_t i = 0; i < controller.input_count(); ++i) {
+        if (controller.input(i) != gait::Metric::Knee) continue;
+        EXPECT_NEAR(c.at("inputs").at(i).get<double>(),
+                    knee_flexion(frames, frame, leg == "left" ? 0 : 1), 0.2)
+            << id << " at " << time;
+      }
+      // Each rule's strength: its terms' memberships at the inputs (the library's) multiplied
+      // (the shipped sets' conjunction, AlgebraicProduct), times its weight.
+      if (controller.input_count() == 2) {
+        ASSERT_EQ(engine.rule_blocks.at(0).conjunction, fuzzy::TNorm::AlgebraicProduct) << id;
+      }
+      fuzzy::Evaluator evaluator(engine);
+      fuzzy::Workspace workspace = evaluator.make_workspace();
+      std::vector<double> x;
+      for (const json& v : c.at("inputs"))
+        x.push_back(v.get<double>());
+      const std::vector<fuzzy::Rule>& rules = engine.rule_blocks.at(0).rules;
+      double strongest = 0.0;
+      for (std::size_t r = 0; r < rules.size(); ++r) {
+        double expected = rules[r].weight;
+        for (const fuzzy::Proposition& p : rules[r].propositions) {
+          std::size_t input = 0;
+          while (engine.inputs.at(input).name != p.variable)
+            ++input;
+          std::size_t term = 0;
+          while (engine.inputs[input].terms.at(term).name != p.term)
+            ++term;
+          ASSERT_TRUE(p.hedges.empty());
+          // A locked range holds the input within it, as the engine reads it.
+          const fuzzy::InputVariable& v = engine.inputs[input];
+          const double at =
+              v.lock_range ? std::clamp(x.at(input), v.minimum, v.maximum) : x.at(input);
+          expected *= evaluator.input_membership(input, term, at, workspace);
+        }
+        EXPECT_NEAR(c.at("rules").at(r).get<double>(), expected, 1e-4)
+            << id << " rule " << r + 1 << " at " << time;
+        strongest = std::max(strongest, expected);
+      }
+      EXPECT_GT(strongest, 0.2) << id << ": some rule fires at " << time;
+      // And the controller's output at those inputs.
+      gait::MetricValues metrics{};
+      for (std::size_t i = 0; i < controller.input_count(); ++i)
+        metrics[static_cast<std::size_t>(controller.input(i))] = x[i];
+      fuzzy::Workspace own = controller.make_workspace();
+      EXPECT_NEAR(c.at("output").get<double>(), controller.evaluate(metrics, own), 1e-4)
+          << id << " at " << time;
+    }
+    ++checked_frames;
+  }
+  EXPECT_EQ(checked_frames, 6);
+  // Past the walk's end: its last frame.
+  EXPECT_EQ(studio.fired({{"time", 1000.0}}).at("frame"), frames.at("count").get<int>() - 1);
+  EXPECT_EQ(refusal([&] {
+              studio.fired({{"time", -1.0}});
+            }),
+            std::make_pair(422, std::string("time")));
+  EXPECT_EQ(refusal([&] {
+              studio.fired({{"time", "1"}});
+            }),
+            std::make_pair(400, std::string("time")));
+  EXPECT_EQ(refusal([&] {
+              studio.fired({{"frame", 1}});
+            }),
+            std::make_pair(400, std::string("frame")));
+  EXPECT_EQ(refusal([&] { studio.fired(json::object()); }),
+            std::make_pair(400, std::string("time")));
 }
 
 TEST(StudioApi, TheEndKnotsCarryTheInputsRange) {

@@ -232,6 +232,10 @@ TEST(StudioServer, AnswersTheApiWithTheStudiosJson) {
   ASSERT_TRUE(rules);
   EXPECT_EQ(rules->status, 200) << rules->body;
   EXPECT_EQ(json::parse(rules->body).at("history").at("undo"), 1);  // the same rules: no step
+  const auto fired = client.Post("/api/fired", R"({"time": 1.5})", "application/json");
+  ASSERT_TRUE(fired);
+  EXPECT_EQ(fired->status, 200);
+  EXPECT_EQ(json::parse(fired->body), served.studio().fired({{"time", 1.5}}));
   const auto undo = client.Post("/api/undo", "{}", "application/json");
   ASSERT_TRUE(undo);
   EXPECT_EQ(json::parse(undo->body).at("history").at("redo"), 1);
@@ -289,6 +293,10 @@ TEST(StudioServer, RefusesWithAStatusAndJsonNamingTheField) {
       {"rules of no controller",
        json_post("/api/rules", port, R"({"controller": "elbow", "rules": ["if"]})"), 422,
        "controller"},
+      {"a frame's time that is not a number", json_post("/api/fired", port, R"({"time": "soon"})"),
+       400, "time"},
+      {"a frame's time before the walk", json_post("/api/fired", port, R"({"time": -2})"), 422,
+       "time"},
       {"rules with NaN", json_post("/api/rules", port, R"({"controller": NaN})"), 400, "body"},
       {"rules over the limit",
        json_post(

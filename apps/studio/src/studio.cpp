@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "fired.hpp"
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/io/bvh.hpp"
@@ -221,6 +222,8 @@ struct Studio::Session {
   }
 
   void forget_walks() {
+    trace.reset();
+    strengths.clear();
     walked.reset();
     walk_view.reset();
     if (compared) {
@@ -228,6 +231,11 @@ struct Studio::Session {
       compared->view.reset();
     }
   }
+
+  // The inputs the controllers read at the current walk's frames, and the slots' rule strengths,
+  // made when the page first asks which rules fire.
+  std::optional<std::vector<detail::FrameInputs>> trace;
+  std::vector<detail::RuleStrengths> strengths;
 
   const json& current_walk() {
     if (!walk_view) {
@@ -420,6 +428,23 @@ json Studio::edit_rules(const json& request) {
     if (place.id == id) answer["controller"] = detail::controller_json(s.current, place);
   }
   return answer;
+}
+
+json Studio::fired(const json& request) {
+  Session& s = *session_;
+  detail::check_fields(request, {"time"});
+  const double time = detail::number_field(request, "time", 0.0, Limits::kLargestValue);
+  s.current_walk();
+  if (!s.trace) {
+    s.trace = detail::trace_inputs(s.current, s.settings, s.ground, s.walked->motion.frames.size());
+    s.strengths.clear();
+    for (int slot = 0; slot < gait::kSlotCount; ++slot)
+      s.strengths.emplace_back(s.current.controllers.at(static_cast<std::size_t>(slot)).engine());
+  }
+  if (s.trace->empty()) throw RequestError(422, "time", "the walk has no frames");
+  const auto index =
+      std::min(static_cast<std::size_t>(std::lround(time * detail::kPageFps)), s.trace->size() - 1);
+  return detail::fired_json(s.current, (*s.trace)[index], index, s.strengths);
 }
 
 json Studio::change_settings(const json& request) {

@@ -107,6 +107,10 @@ class Studio {
   // edit() does. A rule that does not read (an unknown word, a term its variable lacks) is
   // refused with 422 naming "rules", the rule's number and the word.
   nlohmann::json edit_rules(const nlohmann::json& request);
+  // {"time": S}: which rules fire at the walk's frame nearest S seconds (the page's frames, 30 a
+  // second): for each of the eight slots' controllers the inputs it read there (from the leg it
+  // drives), each rule's firing strength and the output, by the library's evaluator.
+  nlohmann::json fired(const nlohmann::json& request);
   // {"step": M, "speed": M/S, "stature": M, "terrain": SPEC, "cycles": N}, any of them: the new
   // settings and walk. A speed above 0 walks by speed (the set's stride gives the step), a step
   // or a speed of 0 by step length.
