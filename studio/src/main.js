@@ -223,7 +223,25 @@ function updateHistory(history) {
   $('#redo').disabled = history.redo === 0;
   $('#undo').title = history.undo ? `Undo: ${history.undo_label}` : 'Nothing to undo';
   $('#redo').title = history.redo ? `Redo: ${history.redo_label}` : 'Nothing to redo';
-  $('#history-label').textContent = history.undo ? `last: ${history.undo_label}` : '';
+  $('#history-label').textContent = history.undo ? `last: ${history.undo_label}` : 'history';
+  // The list: the start, then every step (those undone greyed); the set stands after `undo`.
+  const steps = history.steps || [];
+  const items = ['start: the set before these steps', ...steps].map((label, to) => {
+    const li = document.createElement('li');
+    li.dataset.to = to;
+    li.className = to === history.undo ? 'current' : to > history.undo ? 'undone' : '';
+    const button = document.createElement('button');
+    button.type = 'button';
+    button.textContent = to === 0 ? label : `${to}. ${label}`;
+    button.title = label;
+    button.addEventListener('click', () => {
+      $('#history').open = false;
+      if (to !== studio.state.history.undo) request('/api/history', { to }, applySet);
+    });
+    li.append(button);
+    return li;
+  });
+  $('#history-steps').replaceChildren(...items);
   $('#unsaved').hidden = !history.unsaved;
 }
 

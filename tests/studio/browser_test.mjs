@@ -401,6 +401,31 @@ try {
     const errors = await studio(() => window.studio.errors.slice());
     check(errors.length === errorsBefore + 1 && errors[errorsBefore].includes('fastt'), 'the refusal was shown once');
     await page.evaluate((n) => window.studio.errors.splice(n, 1), errorsBefore);
+    await page.locator('.controller[data-controller="swing_knee"] details.rules > summary').click();
+  }
+
+  // ---- the history as a list: back two steps with a click, and forward again ----
+  {
+    const before = await studio(() => window.studio.state.history);
+    const curveNow = await kneeCurve();
+    await page.click('#history > summary');
+    const items = await page.locator('#history-steps li').allTextContents();
+    check(items.length === before.undo + before.redo + 1 && items[before.undo].includes(before.undo_label) &&
+      await page.locator('#history-steps li.current').getAttribute('data-to') === String(before.undo),
+    `the history lists its ${before.undo + before.redo} steps, the one the set stands after marked`);
+    await shot('history.png');
+    await page.locator(`#history-steps li[data-to="${before.undo - 2}"] button`).click();
+    await idle();
+    const back = await studio(() => window.studio.state.history);
+    check(back.undo === before.undo - 2 && back.redo === before.redo + 2 && !(await page.locator('#history').getAttribute('open') !== null),
+      `a click on a step goes back to it (${back.undo} done, ${back.redo} to redo)`);
+    check(JSON.stringify(await kneeCurve()) !== JSON.stringify(curveNow), 'and the walk is that point\'s');
+    await page.click('#history > summary');
+    await page.locator(`#history-steps li[data-to="${before.undo}"] button`).click();
+    await idle();
+    const again = await studio(() => window.studio.state.history);
+    check(again.undo === before.undo && again.redo === before.redo && JSON.stringify(await kneeCurve()) === JSON.stringify(curveNow),
+      'forward again with a click: the walk as it was, exactly');
   }
 
   // ---- edit-to-redraw latency over 10 cycles: isolated edits, each a small drag ----

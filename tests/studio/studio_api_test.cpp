@@ -435,6 +435,57 @@ TEST(StudioApi, FiredRulesAreTheLibrarysEvaluationAtTheInputsTheWalkRead) {
             std::make_pair(400, std::string("time")));
 }
 
+TEST(StudioApi, TheHistoryIsAListOfStepsToGoBackAndForthTo) {
+  Studio studio(quick("history-list"));
+  const json start = studio.walk().at("walk");
+  studio.edit({{"controller", "swing_knee"}, {"variable", "delta"}, {"knot", 1}, {"value", 0.346}});
+  const json knot = studio.walk().at("walk");
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 50}});
+  std::vector<std::string> rules = rules_of(controller(studio.state(), "swing_knee"));
+  rules[2] = "if delta is start and knee is deep then velocity is flex";
+  const json last = studio.edit_rules({{"controller", "swing_knee"}, {"rules", rules}});
+  const json steps = last.at("history").at("steps");
+  EXPECT_EQ(steps, json({"swing_knee: delta knot 1 (center) 0.513 -> 0.346",
+                         "swing_knee: velocity hold 37.6 -> 50", "swing_knee: rule 3 edited"}));
+
+  // Back to before them all: the walk as it began, the three steps still listed, to redo.
+  const json back = studio.go_to({{"to", 0}});
+  EXPECT_EQ(timeless(back.at("walk")), timeless(start));
+  EXPECT_EQ(back.at("history").at("undo"), 0);
+  EXPECT_EQ(back.at("history").at("redo"), 3);
+  EXPECT_EQ(back.at("history").at("steps"), steps);
+  EXPECT_FALSE(back.at("history").at("unsaved").get<bool>());
+  // Forward to all three, then to the first: each the walk of that point.
+  EXPECT_EQ(timeless(studio.go_to({{"to", 3}}).at("walk")), timeless(last.at("walk")));
+  const json first = studio.go_to({{"to", 1}});
+  EXPECT_EQ(timeless(first.at("walk")), timeless(knot));
+  EXPECT_EQ(first.at("history").at("undo_label"), steps.at(0));
+  EXPECT_EQ(first.at("history").at("redo_label"), steps.at(1));
+  EXPECT_EQ(controller(first, "swing_knee").at("inputs").at(0).at("knots").at(1), 0.346);
+  EXPECT_EQ(rules_of(controller(first, "swing_knee")).at(2),
+            "if delta is start and knee is deep then velocity is hold");
+  // Where it stands: nothing changes.
+  EXPECT_EQ(studio.go_to({{"to", 1}}).at("history"), first.at("history"));
+
+  EXPECT_EQ(refusal([&] { studio.go_to({{"to", 4}}); }), std::make_pair(422, std::string("to")));
+  EXPECT_EQ(refusal([&] { studio.go_to({{"to", -1}}); }), std::make_pair(422, std::string("to")));
+  EXPECT_EQ(refusal([&] { studio.go_to({{"to", "1"}}); }), std::make_pair(400, std::string("to")));
+  EXPECT_EQ(refusal([&] { studio.go_to({{"to", 1.5}}); }), std::make_pair(400, std::string("to")));
+  EXPECT_EQ(refusal([&] {
+              studio.go_to({{"step", 1}});
+            }),
+            std::make_pair(400, std::string("step")));
+  EXPECT_EQ(refusal([&] { studio.go_to(json::object()); }), std::make_pair(400, std::string("to")));
+  EXPECT_EQ(studio.state().at("history"), first.at("history"));
+
+  // An edit from there drops the steps undone, as after an undo.
+  const json edited = studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "flex"}, {"value", 500}});
+  EXPECT_EQ(edited.at("history").at("steps"),
+            json({steps.at(0), "swing_knee: velocity flex 532 -> 500"}));
+}
+
 TEST(StudioApi, TheEndKnotsCarryTheInputsRange) {
   Studio studio(quick("end_knot"));
   const json answer = studio.edit(

@@ -297,6 +297,8 @@ TEST(StudioServer, RefusesWithAStatusAndJsonNamingTheField) {
        400, "time"},
       {"a frame's time before the walk", json_post("/api/fired", port, R"({"time": -2})"), 422,
        "time"},
+      {"a point of the history past its end", json_post("/api/history", port, R"({"to": 99})"), 422,
+       "to"},
       {"rules with NaN", json_post("/api/rules", port, R"({"controller": NaN})"), 400, "body"},
       {"rules over the limit",
        json_post(

@@ -202,7 +202,19 @@ struct Studio::Session {
             {"redo", redo.size()},
             {"undo_label", undo.empty() ? "" : undo.back().label},
             {"redo_label", redo.empty() ? "" : redo.back().label},
-            {"unsaved", version != saved_version}};
+            {"unsaved", version != saved_version},
+            {"steps", steps_json()}};
+  }
+
+  // Every step of the history, oldest first: those done (undo's), then those undone (redo's,
+  // the next first). The set stands after the first `undo` of them.
+  json steps_json() const {
+    json steps = json::array();
+    for (const Step& step : undo)
+      steps.push_back(step.label);
+    for (auto it = redo.rbegin(); it != redo.rend(); ++it)
+      steps.push_back(it->label);
+    return steps;
   }
 
   json settings_json() const {
@@ -268,6 +280,12 @@ struct Studio::Session {
   // Undo (from undo to redo) or redo (the other way): the set of the step on top of `from`
   // becomes the current one, which goes onto `to` with the step's label.
   json step_through(std::vector<Step>& from, std::vector<Step>& to) {
+    move_step(from, to);
+    return whole();
+  }
+
+  // One step from `from` to `to`, without walking.
+  void move_step(std::vector<Step>& from, std::vector<Step>& to) {
     Step step = std::move(from.back());
     from.pop_back();
     to.push_back({std::move(current), step.label, opened, version});
@@ -277,6 +295,10 @@ struct Studio::Session {
     gesture.clear();
     fit_step();
     forget_walks();
+  }
+
+  // Everything an undo, a redo or a jump through the history changes.
+  json whole() {
     return {{"set", detail::set_json(current)},
             {"opened", opened_json()},
             {"history", history()},
@@ -539,6 +561,18 @@ json Studio::redo() {
   Session& s = *session_;
   if (s.redo.empty()) throw RequestError(409, "redo", "nothing to redo");
   return s.step_through(s.redo, s.undo);
+}
+
+json Studio::go_to(const json& request) {
+  Session& s = *session_;
+  detail::check_fields(request, {"to"});
+  const int total = static_cast<int>(s.undo.size() + s.redo.size());
+  const int to = detail::integer_field(request, "to", 0, total);
+  while (static_cast<int>(s.undo.size()) > to)
+    s.move_step(s.undo, s.redo);
+  while (static_cast<int>(s.undo.size()) < to)
+    s.move_step(s.redo, s.undo);
+  return s.whole();
 }
 
 json Studio::open(const json& request) {

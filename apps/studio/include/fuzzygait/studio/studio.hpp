@@ -119,6 +119,9 @@ class Studio {
   // history, the settings, the walk and the compared walk (which follows the set opened).
   nlohmann::json undo();
   nlohmann::json redo();
+  // {"to": N}: undoes or redoes until the first N steps of the history (history's "steps") are
+  // done, and answers as undo() does; N from 0 (before them all) to the steps' count.
+  nlohmann::json go_to(const nlohmann::json& request);
   // {"set": ID}: opens a built-in style ("style:NAME", also a reset to it), a folder
   // ("folder:N") or a saved set ("saved:NAME") as the current set, one step of the history.
   nlohmann::json open(const nlohmann::json& request);
