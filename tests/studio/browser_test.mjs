@@ -4,7 +4,10 @@
 // saved set again, compares it with the set as opened, walks it up stairs, downloads the glTF and
 // has the Khronos glTF-Validator check it, measures the time from an edit's input event to the
 // frame that shows its new walk (10 gait cycles), and stops the server mid-edit and starts it
-// again: the page shows that it is away, then recovers by itself. Screenshots go to OUT_DIR.
+// again: the page shows that it is away, then recovers by itself. It also checks which rules fire
+// at a frame against the library (fuzzygait fuzzy eval), edits a rule as text (refused, then
+// taken), types exact knot and word values, and goes back and forth through the history's list.
+// Screenshots go to OUT_DIR.
 //
 //   node browser_test.mjs FUZZYGAIT_PROGRAM OUT_DIR [--max-median-ms N]
 //

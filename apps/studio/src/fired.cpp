@@ -1,6 +1,7 @@
 #include "fired.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -67,12 +68,18 @@ RuleStrengths::RuleStrengths(const fuzzy::Engine& engine) {
   fuzzy::RuleBlock& block = one.rule_blocks[0];
   block.implication = fuzzy::TNorm::None;
   const std::vector<fuzzy::Rule> rules = block.rules;
-  for (const fuzzy::Rule& rule : rules) {
-    fuzzy::Rule alone = rule;
-    alone.conclusions = {fuzzy::Proposition{out.name, true, {}, "one"}};
-    block.rules = {alone};
-    evaluators_.emplace_back(one);
-    workspaces_.push_back(evaluators_.back().make_workspace());
+  try {
+    for (const fuzzy::Rule& rule : rules) {
+      fuzzy::Rule alone = rule;
+      alone.conclusions = {fuzzy::Proposition{out.name, true, {}, "one"}};
+      block.rules = {alone};
+      evaluators_.emplace_back(one);
+      workspaces_.push_back(evaluators_.back().make_workspace());
+    }
+  } catch (const std::invalid_argument&) {
+    // A rule that reads the output (a chained engine) alone: no strengths, the page shows none.
+    evaluators_.clear();
+    workspaces_.clear();
   }
 }
 
