@@ -59,20 +59,27 @@ export function moveKnot(input, index, value) {
 }
 
 class MembershipPlot {
-  // `onDrag(index, value, phase, event)` is called as a knot is dragged (phase 'move', then 'end').
-  constructor(parent, controllerId, input, onDrag) {
+  // `onDrag(index, value, phase, event)` is called as a knot is dragged (phase 'move', then 'end');
+  // `onType(index, value, refused)` when a knot's value is typed into its field (`refused(text)`
+  // shows the server's reason beside the fields).
+  constructor(parent, controllerId, input, onDrag, onType) {
     this.controllerId = controllerId;
     this.input = input;
     this.onDrag = onDrag;
+    this.onType = onType;
     this.figure = document.createElement('figure');
     this.figure.className = 'mf';
     parent.append(this.figure);
     this.svg = svg('svg', { viewBox: `0 0 ${WIDTH} ${HEIGHT}`, class: 'mf-plot' }, this.figure);
     this.shapes = svg('g', {}, this.svg);
+    this.now = svg('g', { class: 'mf-now' }, this.svg);
     this.handles = svg('g', {}, this.svg);
     const caption = document.createElement('figcaption');
     caption.innerHTML = `<b>${escapeHtml(input.name)}</b> ${escapeHtml(input.description || '')}`;
     this.figure.append(caption);
+    this.fields = document.createElement('div');
+    this.fields.className = 'knot-fields';
+    this.figure.append(this.fields);
     // The x span is fixed while the card lives, so a drag maps the pointer steadily.
     const [low, high] = input.domain;
     const pad = (high - low) * 0.06;
@@ -148,6 +155,55 @@ class MembershipPlot {
       t.textContent = niceNumber(v);
     }
     this.drawHandles();
+    this.drawFields();
+  }
+
+  // A field a knot: its exact value typed, taken on Enter or leaving the field. The server keeps
+  // the partition's order: a value past a neighbour's knot is refused with the reason, shown
+  // under the fields, and the field shows the knot where it is.
+  drawFields() {
+    const knots = this.input.partition ? this.input.knots : [];
+    if (this.fields.querySelectorAll('input').length !== knots.length) {
+      this.fields.innerHTML = knots.map((_, i) => `<label title="${escapeHtml(this.input.terms[i].name)} peaks at">
+        <span>${escapeHtml(readable(this.input.terms[i].name))}</span>
+        <input type="number" step="any" class="knot-value" data-controller="${escapeHtml(this.controllerId)}"
+          data-variable="${escapeHtml(this.input.name)}" data-knot="${i}"></label>`).join('') +
+        '<p class="knot-error" role="alert"></p>';
+      this.fields.querySelectorAll('input').forEach((field, i) => {
+        field.addEventListener('keydown', (event) => event.stopPropagation());
+        field.addEventListener('change', () => {
+          const error = this.fields.querySelector('.knot-error');
+          const value = Number(field.value);
+          if (field.value.trim() === '' || !Number.isFinite(value)) {
+            error.textContent = `${readable(this.input.terms[i].name)}: "${field.value}" is not a number`;
+            field.value = Number(this.input.knots[i].toPrecision(12));
+            return;
+          }
+          error.textContent = '';
+          if (value === this.input.knots[i]) return;
+          this.onType(i, value, (text) => {
+            error.textContent = text;
+            field.value = Number(this.input.knots[i].toPrecision(12));
+            field.select();
+          });
+        });
+      });
+    }
+    this.fields.querySelectorAll('input').forEach((field, i) => {
+      if (document.activeElement !== field) field.value = Number(knots[i].toPrecision(12));
+    });
+  }
+
+  // The input's value at the frame shown: a line across the terms, a dot where it meets each.
+  setNow(value) {
+    this.now.replaceChildren();
+    if (value === null || value === undefined) return;
+    const [low, high] = this.domain;
+    const x = this.x(Math.min(Math.max(value, low), high));
+    svg('line', { x1: x, x2: x, y1: MARGIN.top - 2, y2: HEIGHT - MARGIN.bottom, class: 'mf-now-line' }, this.now);
+    const label = svg('text', { x: x + 3, y: HEIGHT - MARGIN.bottom - 3, class: 'mf-now-value' }, this.now);
+    label.textContent = niceNumber(value);
+    this.now.dataset.value = value;
   }
 
   drawHandles() {
@@ -226,7 +282,7 @@ class MembershipPlot {
     const clamped = Math.min(Math.max(value, low), high);
     // Three significant decimals of the span: values a person reads, as the tuner writes them.
     const unit = 10 ** (Math.floor(Math.log10(span)) - 3);
-    return Math.round(clamped / unit) * unit;
+    return Number((Math.round(clamped / unit) * unit).toPrecision(12));
   }
 
   // New data from the server; a knot being dragged keeps the pointer's value.
@@ -311,7 +367,79 @@ function rulesHtml(controller) {
     grid = `<table class="rule-grid"><tr><th>${escapeHtml(a.name)} \\ ${escapeHtml(b.name)}</th>${b.terms.map((t) => `<th>${escapeHtml(readable(t.name))}</th>`).join('')}</tr>
       ${rules.grid.map((row, i) => `<tr><th>${escapeHtml(readable(a.terms[i].name))}</th>${row.map(cell).join('')}</tr>`).join('')}</table>`;
   }
-  return `${grid}<ol class="rule-text">${rules.text.map((r) => `<li>${escapeHtml(r)}</li>`).join('')}</ol>`;
+  return grid;
+}
+
+// The rules as text to edit, one a line as FLL writes them. Apply sends them to the server, which
+// reads them with the library's own rule parser: a rule it cannot read comes back as a refusal
+// naming the rule's number and the word, shown under the text, which stays as typed.
+function ruleEditor(element, controller, onRules) {
+  element.innerHTML = `<div class="rule-grid-box"></div><div class="fired"></div>
+    <textarea class="rule-edit" spellcheck="false" aria-label="rules of ${escapeHtml(controller.title)}"></textarea>
+    <div class="rule-actions"><button type="button" class="apply-rules" disabled>Apply rules</button>
+    <button type="button" class="revert-rules" disabled>Revert</button>
+    <span class="rule-help">one rule a line: if INPUT is TERM [and …] then OUTPUT is WORD [with W]</span></div>
+    <p class="rule-error" role="alert"></p>`;
+  const text = element.querySelector('.rule-edit');
+  const apply = element.querySelector('.apply-rules');
+  const revert = element.querySelector('.revert-rules');
+  const editor = {
+    shown: '',
+    sent: false,
+    dirty: () => text.value !== editor.shown,
+    sync: () => {
+      apply.disabled = revert.disabled = !editor.dirty();
+    },
+    show: (rules) => {
+      const value = rules.text.join('\n');
+      // An edit being typed stays until it is applied or reverted.
+      if (!editor.dirty() || editor.sent) {
+        text.value = value;
+        element.querySelector('.rule-error').textContent = '';
+      }
+      editor.shown = value;
+      editor.sent = false;
+      text.rows = Math.min(36, 2 * rules.text.length + 1);
+      editor.sync();
+    },
+    refused: (message) => {
+      editor.sent = false;
+      element.querySelector('.rule-error').textContent = message;
+      // The rule refused, selected: "rule N" counts the lines that are not blank.
+      const match = /^rule (\d+)/.exec(message);
+      if (!match) return;
+      let n = Number(match[1]);
+      let start = 0;
+      for (const line of text.value.split('\n')) {
+        if (line.trim() !== '' && --n === 0) {
+          text.focus();
+          text.setSelectionRange(start, start + line.length);
+          return;
+        }
+        start += line.length + 1;
+      }
+    },
+  };
+  text.addEventListener('input', editor.sync);
+  text.addEventListener('keydown', (event) => {
+    if (event.key === 'Enter' && (event.ctrlKey || event.metaKey)) {
+      event.preventDefault();
+      apply.click();
+    }
+    event.stopPropagation(); // the page's keys (space: play, arrows: step) are not the text's
+  });
+  apply.addEventListener('click', () => {
+    const rules = text.value.split('\n').map((line) => line.trim()).filter((line) => line !== '');
+    editor.sent = true;
+    element.querySelector('.rule-error').textContent = '';
+    onRules(controller.id, rules, editor.refused);
+  });
+  revert.addEventListener('click', () => {
+    text.value = editor.shown;
+    element.querySelector('.rule-error').textContent = '';
+    editor.sync();
+  });
+  return editor;
 }
 
 class ControllerCard {
@@ -328,7 +456,10 @@ class ControllerCard {
     this.data = controller;
     this.plots = controller.inputs.map((input) => new MembershipPlot(
       this.element.querySelector('.inputs'), controller.id, structuredClone(input),
-      (index, value, phase, event) => handlers.onKnot(controller.id, input.name, index, value, phase, event)));
+      (index, value, phase, event) => handlers.onKnot(controller.id, input.name, index, value, phase, event),
+      (index, value, refused) => handlers.onKnotTyped(controller.id, input.name, index, value, refused)));
+    this.rules = ruleEditor(this.element.querySelector('.rules > div'), controller,
+      (id, rules, refused) => handlers.onRules(id, rules, refused));
     this.buildWords(controller, null);
     this.refresh(controller);
   }
@@ -360,6 +491,7 @@ class ControllerCard {
       c.onChange((value) => this.handlers.onWord(controller.id, out.name, word.name, value, 'move'));
       c.onFinishChange((value) => this.handlers.onWord(controller.id, out.name, word.name, value, 'end'));
       if (this.handlers.onClamped) sayWhenClamped(c, readable(word.name), this.handlers.onClamped);
+      exactWhenTyped(c);
       this.controllers[word.name] = c;
     }
   }
@@ -367,7 +499,30 @@ class ControllerCard {
   refresh(controller) {
     this.data = controller;
     drawResponse(this.element.querySelector('.response'), controller);
-    this.element.querySelector('.rules > div').innerHTML = rulesHtml(controller);
+    this.element.querySelector('.rule-grid-box').innerHTML = rulesHtml(controller);
+    this.rules.show(controller.rules);
+    this.element.querySelector('.rules > summary').textContent = `${controller.rules.text.length} rules`;
+  }
+
+  // Which rules fire at the frame shown (the server's answer for this controller, or null): the
+  // inputs marked on their plots, each rule's strength as a bar under its text.
+  showFired(now, time) {
+    const box = this.element.querySelector('.fired');
+    if (!now || now.rules.length !== this.data.rules.text.length) {
+      this.plots.forEach((plot) => plot.setNow(null));
+      box.replaceChildren();
+      return;
+    }
+    this.plots.forEach((plot, i) => plot.setNow(now.inputs[i]));
+    const strongest = Math.max(...now.rules);
+    const inputs = this.data.inputs.map((input, i) => `${escapeHtml(input.name)} ${niceNumber(now.inputs[i])}`).join(', ');
+    box.innerHTML = `<p class="fired-caption">At ${time.toFixed(2)} s, the ${now.leg} leg: ${inputs} → ${niceNumber(now.output)}</p>
+      <ol class="fired-rules">${this.data.rules.text.map((text, r) => {
+        const w = now.rules[r];
+        return `<li class="${w > 0 && w === strongest ? 'strongest' : ''}${w === 0 ? ' idle' : ''}" data-strength="${w}">
+          <span class="fired-bar" style="width:${(100 * Math.min(1, w)).toFixed(1)}%"></span>
+          <span class="fired-text">${escapeHtml(text)}</span><span class="fired-value">${w.toFixed(2)}</span></li>`;
+      }).join('')}</ol>`;
   }
 
   // The server's new view of this controller.
@@ -424,12 +579,34 @@ export class ControllerPanel {
     if (card) card.update(controller);
   }
 
+  // POST /api/fired's answer: the slots' controllers show it; the terrain words' show nothing.
+  showFired(answer) {
+    for (const [id, card] of this.cards) card.showFired(answer ? answer.controllers[id] || null : null, answer ? answer.time : 0);
+  }
+
   setCompared(compareSet) {
     for (const [id, card] of this.cards) {
       const other = compareSet ? compareSet.controllers.find((c) => c.id === id) : null;
       card.setCompared(other || null);
     }
   }
+}
+
+// lil-gui rounds a number typed into a slider's field to the slider's step (37.625 became 38 on
+// a slider of whole numbers): typed, a number is taken as it is; dragged, the slider keeps its
+// round steps. 'beforeinput' comes before lil-gui's own 'input' handler, which snaps.
+export function exactWhenTyped(control) {
+  const input = control.$input;
+  if (!input || typeof control._snap !== 'function') return;
+  const snap = control._snap.bind(control);
+  let typing = false;
+  input.addEventListener('beforeinput', () => {
+    typing = true;
+  });
+  input.addEventListener('blur', () => {
+    typing = false;
+  });
+  control._snap = (value) => (typing ? value : snap(value));
 }
 
 // lil-gui puts a number typed into a slider's field within the slider's range without a word

@@ -223,7 +223,25 @@ function updateHistory(history) {
   $('#redo').disabled = history.redo === 0;
   $('#undo').title = history.undo ? `Undo: ${history.undo_label}` : 'Nothing to undo';
   $('#redo').title = history.redo ? `Redo: ${history.redo_label}` : 'Nothing to redo';
-  $('#history-label').textContent = history.undo ? `last: ${history.undo_label}` : '';
+  $('#history-label').textContent = history.undo ? `last: ${history.undo_label}` : 'history';
+  // The list: the start, then every step (those undone greyed); the set stands after `undo`.
+  const steps = history.steps || [];
+  const items = ['start: the set before these steps', ...steps].map((label, to) => {
+    const li = document.createElement('li');
+    li.dataset.to = to;
+    li.className = to === history.undo ? 'current' : to > history.undo ? 'undone' : '';
+    const button = document.createElement('button');
+    button.type = 'button';
+    button.textContent = to === 0 ? label : `${to}. ${label}`;
+    button.title = label;
+    button.addEventListener('click', () => {
+      $('#history').open = false;
+      if (to !== studio.state.history.undo) request('/api/history', { to }, applySet);
+    });
+    li.append(button);
+    return li;
+  });
+  $('#history-steps').replaceChildren(...items);
   $('#unsaved').hidden = !history.unsaved;
 }
 
@@ -291,6 +309,27 @@ function onKnot(controller, variable, knot, value, phase, event) {
 function onWord(controller, variable, term, value, phase) {
   editInGesture(`${controller}/${variable}/${term}`, { controller, variable, term }, value, phase,
     performance.now());
+}
+
+// A knot's value typed: one step of the history; a refusal (past a neighbour) is shown beside the
+// fields through `refused`, and the page shows the server's controllers again.
+function onKnotTyped(controller, variable, knot, value, refused) {
+  request('/api/edit', { controller, variable, knot, value }, applyEdit, performance.now(), undefined,
+    (error) => {
+      refused(error.message);
+      showError(error);
+      return true;
+    });
+}
+
+// Rules typed in a controller's card: one step of the history; a refusal (a word the parser
+// does not know) is shown under the text through `refused`, which keeps the text as typed.
+function onRules(controller, rules, refused) {
+  request('/api/rules', { controller, rules }, applyEdit, performance.now(), undefined, (error) => {
+    refused(error.message);
+    showError(error);
+    return true;
+  });
 }
 
 function onSetParameter(name, value, phase) {
@@ -504,8 +543,38 @@ function frame() {
     timed(studio.frameMs.view3d, () => view3d.render(t));
     timed(studio.frameMs.side, () => side.render(t));
     curves.showCycle(motion.cyclePercent(t));
+    askFired(t);
   }
   requestAnimationFrame(frame);
+}
+
+// ---- which rules fire now --------------------------------------------------------------------
+
+// The server sends, for the frame asked, each slot controller's inputs and each rule's firing
+// strength as the library evaluates them (POST /api/fired): the page computes none itself, so the
+// bars are the library's numbers at the inputs marked, whatever the terms' shapes, hedges or
+// operators (a second evaluator in the page could drift from the engine's). One frame's answer is
+// about 2 KB; the page asks only while a controller's rules are open, one request at a time, for
+// the frame shown when the last answer came (at most one a frame while playing).
+const fired = { frame: -1, walk: null, out: false, shown: null };
+studio.fired = fired;
+function askFired(t) {
+  if (fired.out || busy || !document.querySelector('.controller details.rules[open]')) return;
+  const index = Math.round(t * 30);
+  if (index === fired.frame && fired.walk === studio.walk) return;
+  fired.out = true;
+  const walk = studio.walk;
+  api.post('/api/fired', { time: index / 30 }).then((answer) => {
+    fired.frame = index;
+    fired.walk = walk;
+    fired.shown = answer;
+    if (walk === studio.walk) panel.showFired(answer);
+  }).catch(() => {
+    // The server away or busy with another set: the next frame asks again.
+    fired.frame = -1;
+  }).finally(() => {
+    fired.out = false;
+  });
 }
 
 // Scrubbing: drag across the side view to move through the walk (it pauses); a double click, or
@@ -556,7 +625,7 @@ async function start() {
   side = new SideView($('#side-canvas'));
   curves = new Curves($('#curves'));
   panel = new ControllerPanel($('#controller-list'), {
-    onKnot, onWord, onClamped: (text) => showMessage(text, 'error'),
+    onKnot, onKnotTyped, onWord, onRules, onClamped: (text) => showMessage(text, 'error'),
   });
   wireToolbar();
   wirePlayback();

@@ -4,7 +4,10 @@
 // saved set again, compares it with the set as opened, walks it up stairs, downloads the glTF and
 // has the Khronos glTF-Validator check it, measures the time from an edit's input event to the
 // frame that shows its new walk (10 gait cycles), and stops the server mid-edit and starts it
-// again: the page shows that it is away, then recovers by itself. Screenshots go to OUT_DIR.
+// again: the page shows that it is away, then recovers by itself. It also checks which rules fire
+// at a frame against the library (fuzzygait fuzzy eval), edits a rule as text (refused, then
+// taken), types exact knot and word values, and goes back and forth through the history's list.
+// Screenshots go to OUT_DIR.
 //
 //   node browser_test.mjs FUZZYGAIT_PROGRAM OUT_DIR [--max-median-ms N]
 //
@@ -88,10 +91,12 @@ page.on('pageerror', (error) => pageErrors.push(error.message));
 // While the test has stopped the server, the browser logs the requests it could not make.
 let serverAway = false;
 let expectConflict = false;
+let expectRefusal = false; // a rule refused on purpose: the browser logs its 422
 page.on('console', (message) => {
   if (message.type() !== 'error') return;
   if (serverAway && /ERR_CONNECTION_REFUSED|ERR_CONNECTION_RESET|ERR_EMPTY_RESPONSE/.test(message.text())) return;
   if (expectConflict && /status of 409/.test(message.text())) return;
+  if (expectRefusal && /status of 422/.test(message.text())) return;
   pageErrors.push(message.text());
 });
 
@@ -147,6 +152,64 @@ try {
   check((await page.locator('#figures').textContent()).includes('Every contact bound met'),
     'the contact figures show the default walk meets its bounds');
   await shot('studio_loaded.png');
+
+  // ---- which rules fire at a frame: the page's bars are the library's strengths ----
+  {
+    const card = page.locator('.controller[data-controller="swing_knee"]');
+    await card.locator('details.rules > summary').click();
+    await studio(() => window.studio.seek(2.0));
+    await page.waitForFunction(() => window.studio.fired.frame === 60 && window.studio.fired.walk === window.studio.walk &&
+      document.querySelectorAll('.controller[data-controller="swing_knee"] .fired-rules li').length === 12,
+    null, { timeout: 10000 });
+    const shown = await page.evaluate(() => {
+      const c = document.querySelector('.controller[data-controller="swing_knee"]');
+      return {
+        strengths: [...c.querySelectorAll('.fired-rules li')].map((li) => Number(li.dataset.strength)),
+        markers: [...c.querySelectorAll('g.mf-now')].map((g) => Number(g.dataset.value)),
+        answer: window.studio.fired.shown.controllers.swing_knee,
+        controller: window.studio.state.set.controllers.find((k) => k.id === 'swing_knee'),
+      };
+    });
+    check(shown.markers.length === 2 && shown.markers[0] === shown.answer.inputs[0] && shown.markers[1] === shown.answer.inputs[1],
+      `both inputs are marked on their plots at the frame's values (${shown.markers.join(', ')})`);
+    // Each rule: the product of its two terms' triangles at the inputs (the set's AlgebraicProduct).
+    const triangle = ([a, b, c], x) => (x <= a || x >= c ? 0 : x <= b ? (x - a) / (b - a) : (c - x) / (c - b));
+    const [delta, knee] = shown.controller.inputs;
+    const clampTo = (input, x) => Math.min(Math.max(x, input.range[0]), input.range[1]); // lock-range
+    const expected = shown.controller.rules.text.map((text) => {
+      const [, d, k] = /delta is (\w+) and knee is (\w+)/.exec(text);
+      return triangle(delta.terms.find((t) => t.name === d).parameters, clampTo(delta, shown.answer.inputs[0])) *
+        triangle(knee.terms.find((t) => t.name === k).parameters, clampTo(knee, shown.answer.inputs[1]));
+    });
+    const worst = Math.max(...expected.map((e, r) => Math.abs(e - shown.strengths[r])));
+    check(worst < 1e-4 && Math.max(...shown.strengths) > 0.2,
+      `the rules' strengths shown are their terms' memberships at the inputs (largest difference ${worst.toExponential(1)})`);
+    // The library's own evaluation of the controller at those inputs (fuzzygait fuzzy eval of the
+    // set's FLL as saved) is the strengths' weighted average of the words.
+    await page.evaluate(() => fetch('/api/save', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+      body: JSON.stringify({ name: 'fired_check' }) }));
+    const words = Object.fromEntries(shown.controller.outputs[0].words.map((w) => [w.name, w.value]));
+    const weighted = shown.controller.rules.text.reduce((sum, text, r) => sum + shown.strengths[r] * words[/velocity is (\w+)/.exec(text)[1]], 0) /
+      shown.strengths.reduce((a, b) => a + b, 0);
+    const table = await new Promise((resolve) => {
+      const child = spawn(program, ['fuzzy', 'eval', join(workspace, 'fired_check', 'swing_knee.fll'), '--data', '-']);
+      let out = '';
+      child.stdout.on('data', (chunk) => (out += chunk));
+      child.on('close', () => resolve(out));
+      child.stdin.end(`delta knee\n${shown.answer.inputs[0]} ${shown.answer.inputs[1]}\n`);
+    });
+    const library = Number(table.trim().split('\n')[1].trim().split(/\s+/)[2]);
+    check(Math.abs(library - shown.answer.output) < 1e-3 && Math.abs(library - weighted) < 0.05,
+      `the controller's output there by fuzzygait fuzzy eval (${library}) is the one shown (${shown.answer.output}) and the strengths' weighted words (${weighted.toFixed(3)})`);
+    await shot('fired_rules.png');
+    // Scrubbed to another frame, the bars follow.
+    await studio(() => window.studio.seek(2.5));
+    await page.waitForFunction(() => window.studio.fired.frame === 75, null, { timeout: 10000 });
+    const later = await page.evaluate(() => [...document.querySelectorAll('.controller[data-controller="swing_knee"] .fired-rules li')]
+      .map((li) => Number(li.dataset.strength)));
+    check(JSON.stringify(later) !== JSON.stringify(shown.strengths), 'at another frame other rules fire');
+    await card.locator('details.rules > summary').click();
+  }
 
   // ---- drag a knot: the curve and the walk change ----
   const knotBefore = await knotValue();
@@ -264,6 +327,109 @@ try {
   await step.press('Enter');
   await idle();
   check((await studio(() => window.studio.state.settings.speed)) === 0, 'a step typed walks by step length again');
+
+  // ---- exact values typed: an output word off the slider's steps, a knot, a knot out of order ----
+  {
+    const exact = await typeWord('hold', '37.625');
+    check(exact === 37.625, `an output word typed is taken exactly, not rounded to the slider's step (${exact})`);
+    const field = page.locator('input.knot-value[data-controller="swing_knee"][data-variable="delta"][data-knot="1"]');
+    await field.scrollIntoViewIfNeeded();
+    const undoBeforeKnot = (await studio(() => window.studio.state.history)).undo;
+    const knotWas = await knotValue();
+    const errorsBefore = await studio(() => window.studio.errors.length);
+    expectRefusal = true;
+    await field.fill('1.3');
+    await field.press('Enter');
+    await idle();
+    expectRefusal = false;
+    const said = await page.locator('.controller[data-controller="swing_knee"] .knot-error').first().textContent();
+    check(said.includes('must lie between') && said.includes('1.29') && await knotValue() === knotWas &&
+      (await studio(() => window.studio.state.history)).undo === undoBeforeKnot,
+    `a knot typed past its neighbour is refused with the reason, nothing changed ("${said}")`);
+    check(Number(await field.inputValue()) === knotWas, `the refused knot's field shows the knot where it is (${knotWas})`);
+    await field.fill('0.4375');
+    await field.press('Enter');
+    await idle();
+    const history = await studio(() => window.studio.state.history);
+    check(await knotValue() === 0.4375 && history.undo === undoBeforeKnot + 1 && history.undo_label.includes('-> 0.4375'),
+      `a knot typed is taken exactly, one step of the history ("${history.undo_label}")`);
+    const parameters = await studio(() => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee').inputs[0].terms[0].parameters);
+    check(parameters[2] === 0.4375, 'the neighbour\'s foot moved with the typed knot');
+    await page.click('#undo');
+    await idle();
+    check(await knotValue() === knotWas && Number(await field.inputValue()) === knotWas, 'undo puts the typed knot back');
+    await page.evaluate((n) => window.studio.errors.splice(n, 1), errorsBefore);
+  }
+
+  // ---- a rule edited as text: refused naming the rule and the word, then taken, then undone ----
+  {
+    const card = page.locator('.controller[data-controller="swing_knee"]');
+    await card.locator('details.rules > summary').click();
+    const rulesText = card.locator('textarea.rule-edit');
+    const original = await rulesText.inputValue();
+    const lines = original.split('\n');
+    check(lines.length === 12 && lines[4] === 'if delta is center and knee is bent then velocity is extend',
+      'the swing knee\'s 12 rules are shown as text, one a line');
+    const errorsBefore = await studio(() => window.studio.errors.length);
+    const undoBeforeRule = (await studio(() => window.studio.state.history)).undo;
+    const curveBeforeRule = await kneeCurve();
+    lines[4] = 'if delta is center and knee is bent then velocity is fastt';
+    await rulesText.fill(lines.join('\n'));
+    expectRefusal = true;
+    await card.locator('button.apply-rules').click();
+    await idle();
+    expectRefusal = false;
+    const said = await card.locator('.rule-error').textContent();
+    check(said.includes('rule 5') && said.includes("'fastt'") && said.includes('extend_fast'),
+      `a rule with an unknown word is refused, naming the rule, the word and the terms ("${said}")`);
+    check(await rulesText.inputValue() === lines.join('\n'), 'the refused text stays as typed');
+    check((await studio(() => window.studio.state.history)).undo === undoBeforeRule, 'a refused rule is no step of the history');
+    await shot('rule_refused.png');
+    lines[4] = 'if delta is center and knee is bent then velocity is extend_fast';
+    await rulesText.fill(lines.join('\n'));
+    await rulesText.press('Control+Enter');
+    await idle();
+    const history = await studio(() => window.studio.state.history);
+    check(history.undo === undoBeforeRule + 1 && history.undo_label === 'swing_knee: rule 5 edited',
+      `the rule edited is one step of the history ("${history.undo_label}")`);
+    check(JSON.stringify(await kneeCurve()) !== JSON.stringify(curveBeforeRule), 'the rule edited changes the knee curve');
+    check(await card.locator('.rule-error').textContent() === '', 'the refusal is gone once the rules are taken');
+    check((await studio(() => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee').rules.text[4]))
+      === lines[4], 'the server holds the rule as typed');
+    await page.click('#undo');
+    await idle();
+    check(JSON.stringify(await kneeCurve()) === JSON.stringify(curveBeforeRule), 'undo brings the knee curve back exactly');
+    check(await page.locator('.controller[data-controller="swing_knee"] textarea.rule-edit').inputValue() === original,
+      'undo brings the rule text back');
+    const errors = await studio(() => window.studio.errors.slice());
+    check(errors.length === errorsBefore + 1 && errors[errorsBefore].includes('fastt'), 'the refusal was shown once');
+    await page.evaluate((n) => window.studio.errors.splice(n, 1), errorsBefore);
+    await page.locator('.controller[data-controller="swing_knee"] details.rules > summary').click();
+  }
+
+  // ---- the history as a list: back two steps with a click, and forward again ----
+  {
+    const before = await studio(() => window.studio.state.history);
+    const curveNow = await kneeCurve();
+    await page.click('#history > summary');
+    const items = await page.locator('#history-steps li').allTextContents();
+    check(items.length === before.undo + before.redo + 1 && items[before.undo].includes(before.undo_label) &&
+      await page.locator('#history-steps li.current').getAttribute('data-to') === String(before.undo),
+    `the history lists its ${before.undo + before.redo} steps, the one the set stands after marked`);
+    await shot('history.png');
+    await page.locator(`#history-steps li[data-to="${before.undo - 2}"] button`).click();
+    await idle();
+    const back = await studio(() => window.studio.state.history);
+    check(back.undo === before.undo - 2 && back.redo === before.redo + 2 && !(await page.locator('#history').getAttribute('open') !== null),
+      `a click on a step goes back to it (${back.undo} done, ${back.redo} to redo)`);
+    check(JSON.stringify(await kneeCurve()) !== JSON.stringify(curveNow), 'and the walk is that point\'s');
+    await page.click('#history > summary');
+    await page.locator(`#history-steps li[data-to="${before.undo}"] button`).click();
+    await idle();
+    const again = await studio(() => window.studio.state.history);
+    check(again.undo === before.undo && again.redo === before.redo && JSON.stringify(await kneeCurve()) === JSON.stringify(curveNow),
+      'forward again with a click: the walk as it was, exactly');
+  }
 
   // ---- edit-to-redraw latency over 10 cycles: isolated edits, each a small drag ----
   await studio(() => {

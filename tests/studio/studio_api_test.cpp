@@ -17,6 +17,7 @@
 
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/eval/motion.hpp"
+#include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/io/controller_files.hpp"
 #include "fuzzygait/io/normative.hpp"
@@ -195,6 +196,294 @@ TEST(StudioApi, MovingAKnotChangesTheControllerAndTheWalkAndUndoRestoresBoth) {
   const json redone = studio.redo();
   EXPECT_EQ(timeless(redone.at("walk")), timeless(answer.at("walk")));
   EXPECT_EQ(refusal([&] { studio.redo(); }), std::make_pair(409, std::string("redo")));
+}
+
+std::vector<std::string> rules_of(const json& controller) {
+  return controller.at("rules").at("text").get<std::vector<std::string>>();
+}
+
+TEST(StudioApi, RulesAreEditedAddedAndDeletedAsStepsOfTheHistory) {
+  Studio studio(quick("rules"));
+  const json before = studio.walk().at("walk");
+  std::vector<std::string> rules = rules_of(controller(studio.state(), "swing_knee"));
+  ASSERT_EQ(rules.size(), 12u);
+  EXPECT_EQ(rules[4], "if delta is center and knee is bent then velocity is extend");
+
+  // Edited: the knee unfolds fast mid-swing; the walk changes, one step "rule 5 edited".
+  rules[4] = "if delta is center and knee is bent then velocity is extend_fast";
+  const json edited = studio.edit_rules({{"controller", "swing_knee"}, {"rules", rules}});
+  EXPECT_EQ(rules_of(edited.at("controller")), rules);
+  EXPECT_NE(edited.at("walk").at("curves").at("knee"), before.at("curves").at("knee"));
+  EXPECT_EQ(edited.at("history").at("undo"), 1);
+  EXPECT_EQ(edited.at("history").at("undo_label"), "swing_knee: rule 5 edited");
+
+  // Added (with a weight, spaced loosely: the parser's text is kept), then deleted.
+  std::vector<std::string> more = rules;
+  more.insert(more.begin() + 2, "if  delta is start and knee is very bent then velocity is flex");
+  const json added = studio.edit_rules({{"controller", "swing_knee"}, {"rules", more}});
+  EXPECT_EQ(added.at("history").at("undo_label"), "swing_knee: rule 3 added");
+  EXPECT_EQ(rules_of(added.at("controller")).at(2),
+            "if delta is start and knee is very bent then velocity is flex");
+  std::vector<std::string> fewer = rules;
+  fewer.erase(fewer.begin());
+  const json deleted = studio.edit_rules({{"controller", "swing_knee"}, {"rules", fewer}});
+  EXPECT_EQ(deleted.at("history").at("undo_label"), "swing_knee: rules edited (13 -> 11 rules)");
+  EXPECT_EQ(rules_of(deleted.at("controller")), fewer);
+  const json one_deleted =
+      studio.edit_rules({{"controller", "swing_knee"},
+                         {"rules", std::vector<std::string>(fewer.begin(), fewer.end() - 1)}});
+  EXPECT_EQ(one_deleted.at("history").at("undo_label"), "swing_knee: rule 11 deleted");
+  EXPECT_EQ(one_deleted.at("history").at("undo"), 4);
+
+  // The same rules again: no step.
+  const json same =
+      studio.edit_rules({{"controller", "swing_knee"},
+                         {"rules", std::vector<std::string>(fewer.begin(), fewer.end() - 1)}});
+  EXPECT_EQ(same.at("history").at("undo"), 4);
+
+  // Undo all the way: the rules and the walk as they were.
+  for (int i = 0; i < 3; ++i)
+    studio.undo();
+  const json undone = studio.undo();
+  EXPECT_EQ(rules_of(controller(undone, "swing_knee")).at(4),
+            "if delta is center and knee is bent then velocity is extend");
+  EXPECT_EQ(timeless(undone.at("walk")), timeless(before));
+  const json redone = studio.redo();
+  EXPECT_EQ(timeless(redone.at("walk")), timeless(edited.at("walk")));
+}
+
+TEST(StudioApi, ARuleThatDoesNotReadIsRefusedNamingItsLineAndWord) {
+  Studio studio(quick("rule-refusals"));
+  const json state = studio.state();
+  const json walk = studio.walk();
+  const std::vector<std::string> rules = rules_of(controller(state, "swing_knee"));
+  const auto with = [&](std::size_t i, const std::string& text) {
+    std::vector<std::string> r = rules;
+    r.at(i) = text;
+    return json{{"controller", "swing_knee"}, {"rules", r}};
+  };
+  const auto message = [&](const json& request) -> std::string {
+    try {
+      studio.edit_rules(request);
+    } catch (const RequestError& e) {
+      EXPECT_EQ(e.field(), "rules") << e.what();
+      EXPECT_EQ(e.status(), 422) << e.what();
+      return e.what();
+    }
+    ADD_FAILURE() << "taken: " << request.dump();
+    return "";
+  };
+  EXPECT_EQ(message(with(2, "if delta is start and knee is deep then velocity is fastt")),
+            "rule 3: 'fastt' is neither a hedge nor a term of 'velocity' (its terms: flex_fast, "
+            "flex, hold, extend, extend_fast)");
+  EXPECT_EQ(message(with(0, "if delta is strat and knee is straight then velocity is hold")),
+            "rule 1: 'strat' is neither a hedge nor a term of 'delta' (its terms: start, center, "
+            "end, past)");
+  EXPECT_THAT(message(with(5, "if speed is high then velocity is hold")),
+              HasSubstr("rule 6: expected an input or output variable, 'and' or 'or' but found "
+                        "'speed' (inputs: delta, knee; outputs: velocity)"));
+  EXPECT_EQ(message(with(1, "if delta is start then")), "rule 2: nothing follows 'then'");
+  EXPECT_EQ(message(with(1, "when delta is start then velocity is hold")),
+            "rule 2 must start with 'if', found 'when'");
+  EXPECT_THAT(message(with(1, "")), HasSubstr("empty rule"));
+  EXPECT_THAT(message(with(3, "if delta is start then velocity is hold\nif")),
+              HasSubstr("rule 4 holds a line break"));
+  EXPECT_THAT(message(with(3, "if delta is start then velocity is hold # why")),
+              HasSubstr("rule 4 holds"));
+  EXPECT_THAT(
+      message(with(3, "if delta is start then velocity is hold with " + std::string(1000, '1'))),
+      HasSubstr("rule 4 is longer than 1000 characters"));
+  EXPECT_THAT(message({{"controller", "swing_knee"}, {"rules", json::array()}}),
+              HasSubstr("1 to 400 rules, got 0"));
+  EXPECT_THAT(
+      message({{"controller", "swing_knee"}, {"rules", std::vector<std::string>(401, rules[0])}}),
+      HasSubstr("got 401"));
+
+  EXPECT_EQ(refusal([&] {
+              studio.edit_rules({{"controller", "swing_kne"}, {"rules", rules}});
+            }),
+            std::make_pair(422, std::string("controller")));
+  EXPECT_EQ(refusal([&] {
+              studio.edit_rules({{"controller", 3}, {"rules", rules}});
+            }),
+            std::make_pair(400, std::string("controller")));
+  EXPECT_EQ(refusal([&] {
+              studio.edit_rules({{"controller", "swing_knee"}});
+            }),
+            std::make_pair(400, std::string("rules")));
+  EXPECT_EQ(refusal([&] {
+              studio.edit_rules({{"controller", "swing_knee"}, {"rules", rules[0]}});
+            }),
+            std::make_pair(400, std::string("rules")));
+  EXPECT_EQ(refusal([&] {
+              studio.edit_rules({{"controller", "swing_knee"}, {"rules", {rules[0], 5}}});
+            }),
+            std::make_pair(400, std::string("rules")));
+  EXPECT_EQ(
+      refusal([&] {
+        studio.edit_rules({{"controller", "swing_knee"}, {"rules", rules}, {"gesture", "g1"}});
+      }),
+      std::make_pair(400, std::string("gesture")));
+  EXPECT_EQ(refusal([&] { studio.edit_rules(json::array()); }).first, 400);
+  // Nothing changed.
+  EXPECT_EQ(studio.state(), state);
+  EXPECT_EQ(timeless(studio.walk().at("walk")), timeless(walk.at("walk")));
+}
+
+// The knee's flexion (degrees) at a page frame, from the walk's points of the leg (0 left).
+double knee_flexion(const json& frames, std::size_t frame, std::size_t leg) {
+  const json& legs = frames.at("legs");
+  const std::size_t at = (frame * 2 + leg) * 12;  // hip, knee, ankle, heel, ball, tip as x, y
+  const auto x = [&](std::size_t k) { return legs.at(at + 2 * k).get<double>(); };
+  const auto y = [&](std::size_t k) { return legs.at(at + 2 * k + 1).get<double>(); };
+  const double thigh = std::atan2(x(1) - x(0), -(y(1) - y(0)));
+  const double shank = std::atan2(x(2) - x(1), -(y(2) - y(1)));
+  return (thigh - shank) * 180.0 / M_PI;
+}
+
+TEST(StudioApi, FiredRulesAreTheLibrarysEvaluationAtTheInputsTheWalkRead) {
+  Studio studio(quick("fired"));
+  const json frames = studio.walk().at("walk").at("frames");
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  int checked_frames = 0;
+  for (const double time : {0.0, 0.5, 1.03, 2.0, 2.5, 3.3}) {
+    const json fired = studio.fired({{"time", time}});
+    const auto frame = fired.at("frame").get<std::size_t>();
+    EXPECT_EQ(frame, static_cast<std::size_t>(std::lround(time * 30.0)));
+    EXPECT_NEAR(fired.at("time").get<double>(), frames.at("time").at(frame).get<double>(), 1e-4);
+    const json& controllers = fired.at("controllers");
+    EXPECT_EQ(controllers.size(), 8u);
+    for (int slot = 0; slot < gait::kSlotCount; ++slot) {
+      const std::string id(gait::slot_name(slot));
+      const json& c = controllers.at(id);
+      const gait::Controller& controller = set.controllers.at(static_cast<std::size_t>(slot));
+      const fuzzy::Engine& engine = controller.engine();
+      ASSERT_EQ(c.at("inputs").size(), controller.input_count()) << id;
+      ASSERT_EQ(c.at("rules").size(), engine.rule_blocks.at(0).rules.size()) << id;
+      // The leg: the one in the slot's phase (the walk's contacts), the left when both are.
+      const bool swing = id.starts_with("swing");
+      const json& contact = frames.at("contact");
+      const bool left_swings = contact.at(2 * frame) == 0;
+      const std::string leg = left_swings == swing ? "left" : "right";
+      EXPECT_EQ(c.at("leg"), leg) << id << " at " << time;
+      // The inputs are that leg's at that frame: its knee as the walk's points bend it.
+      for (std::size_t i = 0; i < controller.input_count(); ++i) {
+        if (controller.input(i) != gait::Metric::Knee) continue;
+        EXPECT_NEAR(c.at("inputs").at(i).get<double>(),
+                    knee_flexion(frames, frame, leg == "left" ? 0 : 1), 0.2)
+            << id << " at " << time;
+      }
+      // Each rule's strength: its terms' memberships at the inputs (the library's) multiplied
+      // (the shipped sets' conjunction, AlgebraicProduct), times its weight.
+      if (controller.input_count() == 2) {
+        ASSERT_EQ(engine.rule_blocks.at(0).conjunction, fuzzy::TNorm::AlgebraicProduct) << id;
+      }
+      fuzzy::Evaluator evaluator(engine);
+      fuzzy::Workspace workspace = evaluator.make_workspace();
+      std::vector<double> x;
+      for (const json& v : c.at("inputs"))
+        x.push_back(v.get<double>());
+      const std::vector<fuzzy::Rule>& rules = engine.rule_blocks.at(0).rules;
+      double strongest = 0.0;
+      for (std::size_t r = 0; r < rules.size(); ++r) {
+        double expected = rules[r].weight;
+        for (const fuzzy::Proposition& p : rules[r].propositions) {
+          std::size_t input = 0;
+          while (engine.inputs.at(input).name != p.variable)
+            ++input;
+          std::size_t term = 0;
+          while (engine.inputs[input].terms.at(term).name != p.term)
+            ++term;
+          ASSERT_TRUE(p.hedges.empty());
+          // A locked range holds the input within it, as the engine reads it.
+          const fuzzy::InputVariable& v = engine.inputs[input];
+          const double at =
+              v.lock_range ? std::clamp(x.at(input), v.minimum, v.maximum) : x.at(input);
+          expected *= evaluator.input_membership(input, term, at, workspace);
+        }
+        EXPECT_NEAR(c.at("rules").at(r).get<double>(), expected, 1e-4)
+            << id << " rule " << r + 1 << " at " << time;
+        strongest = std::max(strongest, expected);
+      }
+      EXPECT_GT(strongest, 0.2) << id << ": some rule fires at " << time;
+      // And the controller's output at those inputs.
+      gait::MetricValues metrics{};
+      for (std::size_t i = 0; i < controller.input_count(); ++i)
+        metrics[static_cast<std::size_t>(controller.input(i))] = x[i];
+      fuzzy::Workspace own = controller.make_workspace();
+      EXPECT_NEAR(c.at("output").get<double>(), controller.evaluate(metrics, own), 1e-4)
+          << id << " at " << time;
+    }
+    ++checked_frames;
+  }
+  EXPECT_EQ(checked_frames, 6);
+  // Past the walk's end: its last frame.
+  EXPECT_EQ(studio.fired({{"time", 1000.0}}).at("frame"), frames.at("count").get<int>() - 1);
+  EXPECT_EQ(refusal([&] {
+              studio.fired({{"time", -1.0}});
+            }),
+            std::make_pair(422, std::string("time")));
+  EXPECT_EQ(refusal([&] {
+              studio.fired({{"time", "1"}});
+            }),
+            std::make_pair(400, std::string("time")));
+  EXPECT_EQ(refusal([&] {
+              studio.fired({{"frame", 1}});
+            }),
+            std::make_pair(400, std::string("frame")));
+  EXPECT_EQ(refusal([&] { studio.fired(json::object()); }),
+            std::make_pair(400, std::string("time")));
+}
+
+TEST(StudioApi, TheHistoryIsAListOfStepsToGoBackAndForthTo) {
+  Studio studio(quick("history-list"));
+  const json start = studio.walk().at("walk");
+  studio.edit({{"controller", "swing_knee"}, {"variable", "delta"}, {"knot", 1}, {"value", 0.346}});
+  const json knot = studio.walk().at("walk");
+  studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "hold"}, {"value", 50}});
+  std::vector<std::string> rules = rules_of(controller(studio.state(), "swing_knee"));
+  rules[2] = "if delta is start and knee is deep then velocity is flex";
+  const json last = studio.edit_rules({{"controller", "swing_knee"}, {"rules", rules}});
+  const json steps = last.at("history").at("steps");
+  EXPECT_EQ(steps, json({"swing_knee: delta knot 1 (center) 0.513 -> 0.346",
+                         "swing_knee: velocity hold 37.6 -> 50", "swing_knee: rule 3 edited"}));
+
+  // Back to before them all: the walk as it began, the three steps still listed, to redo.
+  const json back = studio.go_to({{"to", 0}});
+  EXPECT_EQ(timeless(back.at("walk")), timeless(start));
+  EXPECT_EQ(back.at("history").at("undo"), 0);
+  EXPECT_EQ(back.at("history").at("redo"), 3);
+  EXPECT_EQ(back.at("history").at("steps"), steps);
+  EXPECT_FALSE(back.at("history").at("unsaved").get<bool>());
+  // Forward to all three, then to the first: each the walk of that point.
+  EXPECT_EQ(timeless(studio.go_to({{"to", 3}}).at("walk")), timeless(last.at("walk")));
+  const json first = studio.go_to({{"to", 1}});
+  EXPECT_EQ(timeless(first.at("walk")), timeless(knot));
+  EXPECT_EQ(first.at("history").at("undo_label"), steps.at(0));
+  EXPECT_EQ(first.at("history").at("redo_label"), steps.at(1));
+  EXPECT_EQ(controller(first, "swing_knee").at("inputs").at(0).at("knots").at(1), 0.346);
+  EXPECT_EQ(rules_of(controller(first, "swing_knee")).at(2),
+            "if delta is start and knee is deep then velocity is hold");
+  // Where it stands: nothing changes.
+  EXPECT_EQ(studio.go_to({{"to", 1}}).at("history"), first.at("history"));
+
+  EXPECT_EQ(refusal([&] { studio.go_to({{"to", 4}}); }), std::make_pair(422, std::string("to")));
+  EXPECT_EQ(refusal([&] { studio.go_to({{"to", -1}}); }), std::make_pair(422, std::string("to")));
+  EXPECT_EQ(refusal([&] { studio.go_to({{"to", "1"}}); }), std::make_pair(400, std::string("to")));
+  EXPECT_EQ(refusal([&] { studio.go_to({{"to", 1.5}}); }), std::make_pair(400, std::string("to")));
+  EXPECT_EQ(refusal([&] {
+              studio.go_to({{"step", 1}});
+            }),
+            std::make_pair(400, std::string("step")));
+  EXPECT_EQ(refusal([&] { studio.go_to(json::object()); }), std::make_pair(400, std::string("to")));
+  EXPECT_EQ(studio.state().at("history"), first.at("history"));
+
+  // An edit from there drops the steps undone, as after an undo.
+  const json edited = studio.edit(
+      {{"controller", "swing_knee"}, {"variable", "velocity"}, {"term", "flex"}, {"value", 500}});
+  EXPECT_EQ(edited.at("history").at("steps"),
+            json({steps.at(0), "swing_knee: velocity flex 532 -> 500"}));
 }
 
 TEST(StudioApi, TheEndKnotsCarryTheInputsRange) {

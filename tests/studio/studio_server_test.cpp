@@ -224,6 +224,18 @@ TEST(StudioServer, AnswersTheApiWithTheStudiosJson) {
   EXPECT_EQ(glb->status, 200);
   EXPECT_EQ(glb->body.substr(0, 4), "glTF");
   EXPECT_EQ(glb->get_header_value("Content-Disposition"), "attachment; filename=\"walk.glb\"");
+  const json first = served.studio().state().at("set").at("controllers").at(0);
+  const auto rules = client.Post(
+      "/api/rules",
+      json{{"controller", first.at("id")}, {"rules", first.at("rules").at("text")}}.dump(),
+      "application/json");
+  ASSERT_TRUE(rules);
+  EXPECT_EQ(rules->status, 200) << rules->body;
+  EXPECT_EQ(json::parse(rules->body).at("history").at("undo"), 1);  // the same rules: no step
+  const auto fired = client.Post("/api/fired", R"({"time": 1.5})", "application/json");
+  ASSERT_TRUE(fired);
+  EXPECT_EQ(fired->status, 200);
+  EXPECT_EQ(json::parse(fired->body), served.studio().fired({{"time", 1.5}}));
   const auto undo = client.Post("/api/undo", "{}", "application/json");
   ASSERT_TRUE(undo);
   EXPECT_EQ(json::parse(undo->body).at("history").at("redo"), 1);
@@ -270,6 +282,29 @@ TEST(StudioServer, RefusesWithAStatusAndJsonNamingTheField) {
        json_post("/api/edit", port, std::string(30000, '[') + std::string(30000, ']')), 400,
        "body"},
       {"an unknown download", request("GET", "/api/download/passwd", port), 404, "file"},
+      {"a rule with an unknown word",
+       json_post("/api/rules", port,
+                 R"({"controller": "swing_knee", "rules": ["if delta is start then velocity )"
+                 R"(is fastt"]})"),
+       422, "rules"},
+      {"rules that are not a list",
+       json_post("/api/rules", port, R"({"controller": "swing_knee", "rules": "if"})"), 400,
+       "rules"},
+      {"rules of no controller",
+       json_post("/api/rules", port, R"({"controller": "elbow", "rules": ["if"]})"), 422,
+       "controller"},
+      {"a frame's time that is not a number", json_post("/api/fired", port, R"({"time": "soon"})"),
+       400, "time"},
+      {"a frame's time before the walk", json_post("/api/fired", port, R"({"time": -2})"), 422,
+       "time"},
+      {"a point of the history past its end", json_post("/api/history", port, R"({"to": 99})"), 422,
+       "to"},
+      {"rules with NaN", json_post("/api/rules", port, R"({"controller": NaN})"), 400, "body"},
+      {"rules over the limit",
+       json_post(
+           "/api/rules", port,
+           R"({"controller": "swing_knee", "rules": [")" + std::string(70000, 'x') + R"("]})"),
+       413, "body"},
   };
   for (const Case& c : cases) {
     const std::string response = raw_exchange(port, c.bytes);

@@ -321,8 +321,11 @@ struct Server::Impl {
     http.Get("/api/state", get([this](const json&) { return studio.state(); }));
     http.Get("/api/walk", get([this](const json&) { return studio.walk(); }));
     http.Post("/api/edit", post([this](const json& r) { return studio.edit(r); }));
+    http.Post("/api/fired", post([this](const json& r) { return studio.fired(r); }));
+    http.Post("/api/rules", post([this](const json& r) { return studio.edit_rules(r); }));
     http.Post("/api/settings", post([this](const json& r) { return studio.change_settings(r); }));
     http.Post("/api/undo", post([this](const json&) { return studio.undo(); }));
+    http.Post("/api/history", post([this](const json& r) { return studio.go_to(r); }));
     http.Post("/api/redo", post([this](const json&) { return studio.redo(); }));
     http.Post("/api/open", post([this](const json& r) { return studio.open(r); }));
     http.Post("/api/save", post([this](const json& r) { return studio.save(r); }));

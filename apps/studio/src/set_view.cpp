@@ -294,9 +294,96 @@ ControllerPlace find_place(const gait::ControllerSet& set, const std::string& id
                          "terrain word's such as 'stairs_swing_knee_up')");
 }
 
+std::string names_of(const std::vector<fuzzy::Term>& terms) {
+  std::string known;
+  for (const fuzzy::Term& t : terms)
+    known += (known.empty() ? "" : ", ") + t.name;
+  return known;
+}
+
+// The parser's sentence for rule `number` (from 1), with what the word at fault could have been:
+// the terms of the variable it was read against, or the engine's variables.
+std::string rule_problem(const fuzzy::Engine& engine, std::size_t number, const std::string& text,
+                         std::string message) {
+  const std::string quoted = "rule '" + text + "'";
+  if (message.starts_with(quoted)) message.erase(0, quoted.size());
+  if (!message.starts_with(":") && !message.starts_with(" ")) message.insert(0, " ");
+  message = "rule " + std::to_string(number) + message;
+  const std::string term_of = "nor a term of '";
+  if (const std::size_t at = message.find(term_of); at != std::string::npos) {
+    const std::size_t begin = at + term_of.size();
+    const std::string variable = message.substr(begin, message.find('\'', begin) - begin);
+    if (const fuzzy::InputVariable* v = engine.find_input(variable)) {
+      message += " (its terms: " + names_of(v->terms) + ")";
+    } else if (const fuzzy::OutputVariable* o = engine.find_output(variable)) {
+      message += " (its terms: " + names_of(o->terms) + ")";
+    }
+  } else if (message.find("variable") != std::string::npos) {
+    std::string inputs;
+    for (const fuzzy::InputVariable& v : engine.inputs)
+      inputs += (inputs.empty() ? "" : ", ") + v.name;
+    std::string outputs;
+    for (const fuzzy::OutputVariable& v : engine.outputs)
+      outputs += (outputs.empty() ? "" : ", ") + v.name;
+    message += " (inputs: " + inputs + "; outputs: " + outputs + ")";
+  }
+  return message;
+}
+
+// What an edit of the rules did, from the rules' normalised texts before and after.
+std::string rules_change(const std::vector<std::string>& before,
+                         const std::vector<std::string>& after) {
+  // One rule added or deleted: the rest as they were, in order.
+  auto one_more = [](const std::vector<std::string>& shorter,
+                     const std::vector<std::string>& longer) -> std::optional<std::size_t> {
+    if (longer.size() != shorter.size() + 1) return std::nullopt;
+    std::size_t i = 0;
+    while (i < shorter.size() && shorter[i] == longer[i])
+      ++i;
+    if (!std::equal(shorter.begin() + static_cast<std::ptrdiff_t>(i), shorter.end(),
+                    longer.begin() + static_cast<std::ptrdiff_t>(i) + 1)) {
+      return std::nullopt;
+    }
+    return i;
+  };
+  if (const std::optional<std::size_t> i = one_more(before, after)) {
+    return "rule " + std::to_string(*i + 1) + " added";
+  }
+  if (const std::optional<std::size_t> i = one_more(after, before)) {
+    return "rule " + std::to_string(*i + 1) + " deleted";
+  }
+  if (before.size() == after.size()) {
+    std::vector<std::size_t> changed;
+    for (std::size_t i = 0; i < before.size(); ++i) {
+      if (before[i] != after[i]) changed.push_back(i + 1);
+    }
+    if (changed.size() == 1) return "rule " + std::to_string(changed[0]) + " edited";
+    return std::to_string(changed.size()) + " rules edited";
+  }
+  return "rules edited (" + std::to_string(before.size()) + " -> " + std::to_string(after.size()) +
+         " rules)";
+}
+
+// The engine as the controller at `place` of `set`; RequestError naming `field` when the
+// controller refuses it.
+void put_controller(gait::ControllerSet& set, const ControllerPlace& place, fuzzy::Engine engine,
+                    const std::string& source, const char* field) {
+  try {
+    gait::Controller changed(std::move(engine), source);
+    if (place.ground < 0) {
+      set.controllers.at(static_cast<std::size_t>(place.slot)) = std::move(changed);
+    } else {
+      set.terrain_controllers.at(place.terrain_index) = std::move(changed);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(422, field, std::string("the controller would not work: ") + e.what());
+  }
+}
+
 }  // namespace
 
 std::string Edited::label(double from) const {
+  if (!text_label.empty()) return text_label;
   return subject + " " + number_text(from, 4) + " -> " + number_text(after, 4);
 }
 
@@ -382,7 +469,7 @@ json set_json(const gait::ControllerSet& set) {
 Edited apply_edit(const gait::ControllerSet& set, const json& request) {
   check_fields(request,
                {"controller", "variable", "knot", "term", "parameter", "value", "set", "gesture"});
-  Edited edited{set, {}, {}, 0.0, 0.0};
+  Edited edited{set, {}, {}, 0.0, 0.0, {}};
   if (const std::optional<std::string> name = optional_string(request, "set")) {
     check_fields(request, {"set", "value", "gesture"});
     for (const SetParameter& p : set_parameters()) {
@@ -432,18 +519,75 @@ Edited apply_edit(const gait::ControllerSet& set, const json& request) {
       edited.subject = variable + " " + term.name;
     }
   }
-  try {
-    gait::Controller changed(std::move(engine), before.source());
-    if (place.ground < 0) {
-      edited.set.controllers.at(static_cast<std::size_t>(place.slot)) = std::move(changed);
-    } else {
-      edited.set.terrain_controllers.at(place.terrain_index) = std::move(changed);
-    }
-  } catch (const std::invalid_argument& e) {
-    throw RequestError(422, "value", std::string("the controller would not work: ") + e.what());
-  }
+  put_controller(edited.set, place, std::move(engine), before.source(), "value");
   edited.controller = place.id;
   edited.subject = place.id + ": " + edited.subject;
+  return edited;
+}
+
+}  // namespace fuzzygait::studio::detail
+
+namespace fuzzygait::studio::detail {
+
+Edited apply_rules(const gait::ControllerSet& set, const json& request) {
+  check_fields(request, {"controller", "rules"});
+  const ControllerPlace place = find_place(set, string_field(request, "controller"));
+  const gait::Controller& before = controller_at(set, place);
+  fuzzy::Engine engine = before.engine();
+  if (!request.contains("rules")) throw RequestError(400, "rules", "'rules' is missing");
+  const json& texts = request.at("rules");
+  if (!texts.is_array()) {
+    throw RequestError(400, "rules", "'rules' must be a list of rules, one text each");
+  }
+  if (texts.empty() || texts.size() > Limits::kMostRules) {
+    throw RequestError(422, "rules",
+                       "a controller needs 1 to " + std::to_string(Limits::kMostRules) +
+                           " rules, got " + std::to_string(texts.size()));
+  }
+  if (engine.rule_blocks.size() != 1) {
+    throw RequestError(422, "rules",
+                       "'" + place.id + "' has " + std::to_string(engine.rule_blocks.size()) +
+                           " rule blocks: edit its FLL file");
+  }
+  std::vector<fuzzy::Rule> rules;
+  std::vector<std::string> after;
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    const std::string number = "rule " + std::to_string(i + 1);
+    if (!texts[i].is_string()) throw RequestError(400, "rules", number + " is not a text");
+    const std::string& text = texts[i].get_ref<const std::string&>();
+    if (text.size() > Limits::kLongestRule) {
+      throw RequestError(
+          422, "rules",
+          number + " is longer than " + std::to_string(Limits::kLongestRule) + " characters");
+    }
+    for (char c : text) {
+      if (static_cast<unsigned char>(c) < 0x20 || c == '#') {
+        throw RequestError(422, "rules",
+                           number +
+                               " holds a line break, a control character or a '#' "
+                               "(one rule a line, no comments)");
+      }
+    }
+    try {
+      rules.push_back(fuzzy::parse_rule(text, engine));
+    } catch (const std::invalid_argument& e) {
+      throw RequestError(422, "rules", rule_problem(engine, i + 1, text, e.what()));
+    }
+    after.push_back(rules.back().text());
+  }
+  std::vector<std::string> was;
+  for (const fuzzy::Rule& r : engine.rule_blocks[0].rules)
+    was.push_back(r.text());
+  Edited edited{set, {}, {}, 0.0, 0.0, {}};
+  if (was == after) return edited;  // nothing changed
+  engine.rule_blocks[0].rules = std::move(rules);
+  if (const std::vector<std::string> problems = engine.problems(); !problems.empty()) {
+    throw RequestError(422, "rules", "the rules cannot be evaluated: " + problems.front());
+  }
+  put_controller(edited.set, place, std::move(engine), before.source(), "rules");
+  edited.controller = place.id;
+  edited.subject = place.id + ": rules";
+  edited.text_label = place.id + ": " + rules_change(was, after);
   return edited;
 }
 

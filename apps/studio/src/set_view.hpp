@@ -46,7 +46,18 @@ struct Edited {
   // first value).
   std::string label(double from) const;
   std::string label() const { return label(before); }
+  // A change that is not one number (the rules): the history's label as it is.
+  std::string text_label;
 };
 Edited apply_edit(const gait::ControllerSet& set, const nlohmann::json& request);
+
+// {"controller": ID, "rules": [TEXT, ...]}: the controller's rules replaced by these, each read
+// by the library's FLL rule parser (fuzzy::parse_rule) against the controller's variables and
+// terms, and the engine checked as `fuzzy check` does (fuzzy::Engine::problems, then
+// gait::Controller). Throws RequestError naming "rules" with the rule's number (from 1) and the
+// word at fault, and for an unknown term the terms its variable has. text_label says what
+// changed ("swing_knee: rule 3 edited", "rule 5 added", "rule 2 deleted"); an edit that leaves
+// the rules as they were has an empty controller.
+Edited apply_rules(const gait::ControllerSet& set, const nlohmann::json& request);
 
 }  // namespace fuzzygait::studio::detail

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "fired.hpp"
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/io/bvh.hpp"
@@ -201,7 +202,19 @@ struct Studio::Session {
             {"redo", redo.size()},
             {"undo_label", undo.empty() ? "" : undo.back().label},
             {"redo_label", redo.empty() ? "" : redo.back().label},
-            {"unsaved", version != saved_version}};
+            {"unsaved", version != saved_version},
+            {"steps", steps_json()}};
+  }
+
+  // Every step of the history, oldest first: those done (undo's), then those undone (redo's,
+  // the next first). The set stands after the first `undo` of them.
+  json steps_json() const {
+    json steps = json::array();
+    for (const Step& step : undo)
+      steps.push_back(step.label);
+    for (auto it = redo.rbegin(); it != redo.rend(); ++it)
+      steps.push_back(it->label);
+    return steps;
   }
 
   json settings_json() const {
@@ -221,6 +234,8 @@ struct Studio::Session {
   }
 
   void forget_walks() {
+    trace.reset();
+    strengths.clear();
     walked.reset();
     walk_view.reset();
     if (compared) {
@@ -228,6 +243,11 @@ struct Studio::Session {
       compared->view.reset();
     }
   }
+
+  // The inputs the controllers read at the current walk's frames, and the slots' rule strengths,
+  // made when the page first asks which rules fire.
+  std::optional<std::vector<detail::FrameInputs>> trace;
+  std::vector<detail::RuleStrengths> strengths;
 
   const json& current_walk() {
     if (!walk_view) {
@@ -260,6 +280,12 @@ struct Studio::Session {
   // Undo (from undo to redo) or redo (the other way): the set of the step on top of `from`
   // becomes the current one, which goes onto `to` with the step's label.
   json step_through(std::vector<Step>& from, std::vector<Step>& to) {
+    move_step(from, to);
+    return whole();
+  }
+
+  // One step from `from` to `to`, without walking.
+  void move_step(std::vector<Step>& from, std::vector<Step>& to) {
     Step step = std::move(from.back());
     from.pop_back();
     to.push_back({std::move(current), step.label, opened, version});
@@ -269,6 +295,10 @@ struct Studio::Session {
     gesture.clear();
     fit_step();
     forget_walks();
+  }
+
+  // Everything an undo, a redo or a jump through the history changes.
+  json whole() {
     return {{"set", detail::set_json(current)},
             {"opened", opened_json()},
             {"history", history()},
@@ -403,6 +433,42 @@ json Studio::edit(const json& request) {
   return answer;
 }
 
+json Studio::edit_rules(const json& request) {
+  Session& s = *session_;
+  detail::Edited edited = detail::apply_rules(s.current, request);
+  if (!edited.controller.empty()) {
+    try {
+      detail::check_walkable(edited.set, s.settings, s.ground);
+    } catch (const std::invalid_argument& e) {
+      throw RequestError(422, "rules", std::string("the set would not walk: ") + e.what());
+    }
+    s.replace(std::move(edited.set), edited.label());
+  }
+  const std::string id = detail::string_field(request, "controller");
+  json answer = {{"history", s.history()}, {"walk", s.current_walk()}};
+  for (const detail::ControllerPlace& place : detail::controller_places(s.current)) {
+    if (place.id == id) answer["controller"] = detail::controller_json(s.current, place);
+  }
+  return answer;
+}
+
+json Studio::fired(const json& request) {
+  Session& s = *session_;
+  detail::check_fields(request, {"time"});
+  const double time = detail::number_field(request, "time", 0.0, Limits::kLargestValue);
+  s.current_walk();
+  if (!s.trace) {
+    s.trace = detail::trace_inputs(s.current, s.settings, s.ground, s.walked->motion.frames.size());
+    s.strengths.clear();
+    for (int slot = 0; slot < gait::kSlotCount; ++slot)
+      s.strengths.emplace_back(s.current.controllers.at(static_cast<std::size_t>(slot)).engine());
+  }
+  if (s.trace->empty()) throw RequestError(422, "time", "the walk has no frames");
+  const auto index =
+      std::min(static_cast<std::size_t>(std::lround(time * detail::kPageFps)), s.trace->size() - 1);
+  return detail::fired_json(s.current, (*s.trace)[index], index, s.strengths);
+}
+
 json Studio::change_settings(const json& request) {
   Session& s = *session_;
   detail::check_fields(request, {"step", "speed", "stature", "terrain", "cycles", "reference"});
@@ -495,6 +561,18 @@ json Studio::redo() {
   Session& s = *session_;
   if (s.redo.empty()) throw RequestError(409, "redo", "nothing to redo");
   return s.step_through(s.redo, s.undo);
+}
+
+json Studio::go_to(const json& request) {
+  Session& s = *session_;
+  detail::check_fields(request, {"to"});
+  const int total = static_cast<int>(s.undo.size() + s.redo.size());
+  const int to = detail::integer_field(request, "to", 0, total);
+  while (static_cast<int>(s.undo.size()) > to)
+    s.move_step(s.undo, s.redo);
+  while (static_cast<int>(s.undo.size()) < to)
+    s.move_step(s.redo, s.undo);
+  return s.whole();
 }
 
 json Studio::open(const json& request) {

@@ -70,6 +70,11 @@ json figure(const char* name, double value, const char* unit, const char* bound,
 
 }  // namespace
 
+gait::Walker make_walker(const gait::ControllerSet& set, const WalkSettings& settings,
+                         const terrain::Terrain& ground) {
+  return gait::Walker(set, walker_options(settings), ground);
+}
+
 void check_walkable(const gait::ControllerSet& set, const WalkSettings& settings,
                     const terrain::Terrain& ground) {
   gait::Walker walker(set, walker_options(settings), ground);

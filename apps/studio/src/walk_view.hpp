@@ -9,6 +9,7 @@
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/gait/controllers.hpp"
+#include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
 
 namespace fuzzygait::studio::detail {
@@ -46,6 +47,10 @@ struct Walked {
 // made: a step shorter than the set walks or longer than the legs reach.
 void check_walkable(const gait::ControllerSet& set, const WalkSettings& settings,
                     const terrain::Terrain& ground);
+
+// The walker walk() walks with (a step or a speed, legs of the stature).
+gait::Walker make_walker(const gait::ControllerSet& set, const WalkSettings& settings,
+                         const terrain::Terrain& ground);
 
 Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
             const terrain::Terrain& ground, const eval::Normative& reference);

@@ -62,8 +62,10 @@ struct Limits {
   // A membership function's knot or parameter, an output word's value: finite and within this
   // of zero (an input's degrees or an output's degrees per second).
   static constexpr double kLargestValue = 1e4;
-  static constexpr std::size_t kLongestText = 200;  // terrain specs, names, gesture ids
-  static constexpr std::size_t kHistory = 200;      // undo steps kept
+  static constexpr std::size_t kLongestText = 200;   // terrain specs, names, gesture ids
+  static constexpr std::size_t kHistory = 200;       // undo steps kept
+  static constexpr std::size_t kMostRules = 400;     // rules of one controller in an edit
+  static constexpr std::size_t kLongestRule = 1000;  // characters of one rule
 };
 
 // A file to download: its name, MIME type and bytes.
@@ -100,6 +102,15 @@ class Studio {
   //                                ControllerSet::manifest_numbers() ("inertia_s", ...)
   // and may carry "gesture": ID, so that the edits of one drag are one step of the history.
   nlohmann::json edit(const nlohmann::json& request);
+  // {"controller": ID, "rules": [TEXT, ...]}: the controller's rules replaced, each read by the
+  // library's FLL rule parser; one step of the history ("swing_knee: rule 3 edited"). Answers as
+  // edit() does. A rule that does not read (an unknown word, a term its variable lacks) is
+  // refused with 422 naming "rules", the rule's number and the word.
+  nlohmann::json edit_rules(const nlohmann::json& request);
+  // {"time": S}: which rules fire at the walk's frame nearest S seconds (the page's frames, 30 a
+  // second): for each of the eight slots' controllers the inputs it read there (from the leg it
+  // drives), each rule's firing strength and the output, by the library's evaluator.
+  nlohmann::json fired(const nlohmann::json& request);
   // {"step": M, "speed": M/S, "stature": M, "terrain": SPEC, "cycles": N}, any of them: the new
   // settings and walk. A speed above 0 walks by speed (the set's stride gives the step), a step
   // or a speed of 0 by step length.
@@ -108,6 +119,9 @@ class Studio {
   // history, the settings, the walk and the compared walk (which follows the set opened).
   nlohmann::json undo();
   nlohmann::json redo();
+  // {"to": N}: undoes or redoes until the first N steps of the history (history's "steps") are
+  // done, and answers as undo() does; N from 0 (before them all) to the steps' count.
+  nlohmann::json go_to(const nlohmann::json& request);
   // {"set": ID}: opens a built-in style ("style:NAME", also a reset to it), a folder
   // ("folder:N") or a saved set ("saved:NAME") as the current set, one step of the history.
   nlohmann::json open(const nlohmann::json& request);

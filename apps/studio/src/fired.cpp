@@ -1,0 +1,125 @@
+#include "fired.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "fuzzygait/gait/walker.hpp"
+#include "runtime/gait/walker_stages.hpp"
+
+namespace fuzzygait::studio::detail {
+namespace {
+
+using nlohmann::json;
+
+// A ten-thousandth: what a marker on a plot or a bar needs.
+double rounded(double x) {
+  return std::isfinite(x) ? std::round(x * 1e4) / 1e4 : 0.0;
+}
+
+bool swing_slot(int slot) {
+  return gait::slot_name(slot).starts_with("swing");
+}
+
+}  // namespace
+
+std::vector<FrameInputs> trace_inputs(const gait::ControllerSet& set, const WalkSettings& settings,
+                                      const terrain::Terrain& ground, std::size_t recorded_frames) {
+  gait::Walker walker = make_walker(set, settings, ground);
+  const auto stride = static_cast<std::size_t>(std::lround(kRecordFps / kPageFps));
+  std::vector<FrameInputs> frames;
+  for (std::size_t i = 0; i < recorded_frames; ++i) {
+    if (i > 0) walker.advance(1.0 / kRecordFps);
+    if (i % stride != 0) continue;
+    // Measuring writes the legs' last progress (which the next step writes again, the same): a
+    // copy keeps the walk as it is.
+    gait::Walker copy = walker;
+    gait::detail::StepData step{};
+    gait::detail::WalkerStages::measure(copy, step);
+    FrameInputs frame;
+    frame.time = static_cast<double>(i) / kRecordFps;
+    frame.metrics = step.metrics;
+    frame.swing = {walker.phase(rig::Side::Left) == gait::Phase::Swing,
+                   walker.phase(rig::Side::Right) == gait::Phase::Swing};
+    frames.push_back(frame);
+  }
+  return frames;
+}
+
+RuleStrengths::RuleStrengths(const fuzzy::Engine& engine) {
+  if (engine.rule_blocks.size() != 1 || engine.outputs.empty()) return;
+  fuzzy::Engine one = engine;
+  fuzzy::OutputVariable& out = one.outputs.at(0);
+  one.outputs.resize(1);
+  out.minimum = -fuzzy::kInfinity;
+  out.maximum = fuzzy::kInfinity;
+  out.lock_range = false;
+  out.lock_previous = false;
+  out.aggregation = fuzzy::SNorm::None;
+  out.default_value = 0.0;
+  out.defuzzifier = fuzzy::Defuzzifier{fuzzy::Defuzzifier::Kind::WeightedSum, 100,
+                                       fuzzy::Defuzzifier::WeightedType::TakagiSugeno};
+  fuzzy::Term unit;
+  unit.name = "one";
+  unit.kind = fuzzy::TermKind::Constant;
+  unit.parameters = {1.0};
+  out.terms = {unit};
+  fuzzy::RuleBlock& block = one.rule_blocks[0];
+  block.implication = fuzzy::TNorm::None;
+  const std::vector<fuzzy::Rule> rules = block.rules;
+  try {
+    for (const fuzzy::Rule& rule : rules) {
+      fuzzy::Rule alone = rule;
+      alone.conclusions = {fuzzy::Proposition{out.name, true, {}, "one"}};
+      block.rules = {alone};
+      evaluators_.emplace_back(one);
+      workspaces_.push_back(evaluators_.back().make_workspace());
+    }
+  } catch (const std::invalid_argument&) {
+    // A rule that reads the output (a chained engine) alone: no strengths, the page shows none.
+    evaluators_.clear();
+    workspaces_.clear();
+  }
+}
+
+std::vector<double> RuleStrengths::at(std::span<const double> inputs) {
+  std::vector<double> strengths;
+  double out = 0.0;
+  for (std::size_t r = 0; r < evaluators_.size(); ++r) {
+    evaluators_[r].evaluate(inputs, std::span<double>(&out, 1), workspaces_[r]);
+    strengths.push_back(out);
+  }
+  return strengths;
+}
+
+json fired_json(const gait::ControllerSet& set, const FrameInputs& frame, std::size_t index,
+                std::vector<RuleStrengths>& strengths) {
+  json controllers = json::object();
+  for (int s = 0; s < gait::kSlotCount; ++s) {
+    const gait::Controller& c = set.controllers.at(static_cast<std::size_t>(s));
+    const bool swing = swing_slot(s);
+    const std::size_t leg = frame.swing[0] == swing ? 0 : 1;
+    // The inputs as sent, and everything else evaluated at them: what the page shows is the
+    // library's evaluation at the numbers it shows.
+    std::vector<double> inputs;
+    gait::MetricValues metrics{};
+    for (std::size_t i = 0; i < c.input_count(); ++i) {
+      const auto m = static_cast<std::size_t>(c.input(i));
+      inputs.push_back(rounded(frame.metrics[leg][m]));
+      metrics[m] = inputs.back();
+    }
+    std::vector<double> rules = strengths.at(static_cast<std::size_t>(s)).at(inputs);
+    for (double& x : rules)
+      x = rounded(x);
+    fuzzy::Workspace workspace = c.make_workspace();
+    controllers[std::string(gait::slot_name(s))] = {
+        {"leg", leg == 0 ? "left" : "right"},
+        {"inputs", inputs},
+        {"rules", rules},
+        {"output", rounded(c.evaluate(metrics, workspace))}};
+  }
+  return {{"time", frame.time}, {"frame", index}, {"controllers", controllers}};
+}
+
+}  // namespace fuzzygait::studio::detail
