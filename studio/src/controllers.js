@@ -508,6 +508,11 @@ class ControllerCard {
   // inputs marked on their plots, each rule's strength as a bar under its text.
   showFired(now, time) {
     const box = this.element.querySelector('.fired');
+    if (now && now.leg === null) {  // no leg in this controller's phase at this frame
+      this.plots.forEach((plot) => plot.setNow(null));
+      box.innerHTML = `<p class="fired-caption">At ${time.toFixed(2)} s no leg is in this controller's phase: it drives nothing.</p>`;
+      return;
+    }
     if (!now || now.rules.length !== this.data.rules.text.length) {
       this.plots.forEach((plot) => plot.setNow(null));
       box.replaceChildren();

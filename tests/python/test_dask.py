@@ -83,6 +83,17 @@ def test_a_set_walks_a_speed_stature_grid_on_workers_as_in_process(client):
         assert r["missed"] == here.missed_contact_bounds()
 
 
+def test_a_walk_that_stalls_fails_alone_and_the_others_return(client):
+    # The default stalls on 0.20 x 0.28 m stairs (record_cycles raises RuntimeError): should it
+    # learn to climb them, pick a ground it stalls on.
+    walks = [{"speed": 1.2}, {"speed": 1.2, "ground": "stairs:0.20:0.28:6"}, {"speed": 1.5}]
+    results = fgd.walk_many("default", walks, client, cycles=4)
+    assert [r["ok"] for r in results] == [True, False, True], [r.get("error") for r in results]
+    assert results[1]["error"].startswith("RuntimeError: the walker did not complete 4 cycles")
+    bad = fgd.walk_many("default", [{"speed": 1.2, "stride": 2}], client, cycles=4)
+    assert not bad[0]["ok"] and "unknown option 'stride'" in bad[0]["error"]
+
+
 def test_the_command_line_trains_prints_a_table_and_names_the_failed_clip(
         truncated_clip, tmp_path):
     out = tmp_path / "out"

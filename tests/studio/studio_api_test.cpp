@@ -346,7 +346,18 @@ TEST(StudioApi, FiredRulesAreTheLibrarysEvaluationAtTheInputsTheWalkRead) {
   const json frames = studio.walk().at("walk").at("frames");
   const gait::ControllerSet set = gait::ControllerSet::builtin("default");
   int checked_frames = 0;
-  for (const double time : {0.0, 0.5, 1.03, 2.0, 2.5, 3.3}) {
+  // Six times, and a frame of double support, where no leg is in the swing controllers' phase.
+  std::vector<double> times{0.0, 0.5, 1.03, 2.0, 2.5, 3.3};
+  const json& contacts = frames.at("contact");
+  for (std::size_t f = 30; 2 * f + 1 < contacts.size(); ++f) {
+    if (contacts.at(2 * f) != 0 && contacts.at(2 * f + 1) != 0) {
+      times.push_back(static_cast<double>(f) / 30.0);
+      break;
+    }
+  }
+  ASSERT_EQ(times.size(), 7u) << "the walk has a frame of double support";
+  int idle_swing_slots = 0;
+  for (const double time : times) {
     const json fired = studio.fired({{"time", time}});
     const auto frame = fired.at("frame").get<std::size_t>();
     EXPECT_EQ(frame, static_cast<std::size_t>(std::lround(time * 30.0)));
@@ -356,14 +367,21 @@ TEST(StudioApi, FiredRulesAreTheLibrarysEvaluationAtTheInputsTheWalkRead) {
     for (int slot = 0; slot < gait::kSlotCount; ++slot) {
       const std::string id(gait::slot_name(slot));
       const json& c = controllers.at(id);
+      const bool swing = id.starts_with("swing");
+      const json& contact = frames.at("contact");
+      const bool left_swings = contact.at(2 * frame) == 0;
+      const bool right_swings = contact.at(2 * frame + 1) == 0;
+      if (left_swings != swing && right_swings != swing) {
+        // No leg in the slot's phase: it drives nothing, and says so.
+        EXPECT_EQ(c, json({{"leg", nullptr}})) << id << " at " << time;
+        ++idle_swing_slots;
+        continue;
+      }
       const gait::Controller& controller = set.controllers.at(static_cast<std::size_t>(slot));
       const fuzzy::Engine& engine = controller.engine();
       ASSERT_EQ(c.at("inputs").size(), controller.input_count()) << id;
       ASSERT_EQ(c.at("rules").size(), engine.rule_blocks.at(0).rules.size()) << id;
       // The leg: the one in the slot's phase (the walk's contacts), the left when both are.
-      const bool swing = id.starts_with("swing");
-      const json& contact = frames.at("contact");
-      const bool left_swings = contact.at(2 * frame) == 0;
       const std::string leg = left_swings == swing ? "left" : "right";
       EXPECT_EQ(c.at("leg"), leg) << id << " at " << time;
       // The inputs are that leg's at that frame: its knee as the walk's points bend it.
@@ -416,7 +434,8 @@ TEST(StudioApi, FiredRulesAreTheLibrarysEvaluationAtTheInputsTheWalkRead) {
     }
     ++checked_frames;
   }
-  EXPECT_EQ(checked_frames, 6);
+  EXPECT_EQ(checked_frames, 7);
+  EXPECT_GE(idle_swing_slots, 4) << "the four swing controllers idle in double support";
   // Past the walk's end: its last frame.
   EXPECT_EQ(studio.fired({{"time", 1000.0}}).at("frame"), frames.at("count").get<int>() - 1);
   EXPECT_EQ(refusal([&] {

@@ -280,7 +280,7 @@ def _walk_one(files: Files, digest: str, walk: dict, cycles: int, reference) -> 
         report = fg.evaluate(motion, reference=reference)
         result.update(ok=True, report=json.loads(report.to_json()),
                       missed=report.missed_contact_bounds())
-    except ValueError as e:  # a walk that does not make the cycles to measure
+    except (ValueError, RuntimeError) as e:  # bad options; a walk that stalls before its cycles
         result.update(ok=False, error=f"{type(e).__name__}: {e}")
     return result
 

@@ -76,7 +76,7 @@ RuleStrengths::RuleStrengths(const fuzzy::Engine& engine) {
       evaluators_.emplace_back(one);
       workspaces_.push_back(evaluators_.back().make_workspace());
     }
-  } catch (const std::invalid_argument&) {
+  } catch (const std::exception&) {
     // A rule that reads the output (a chained engine) alone: no strengths, the page shows none.
     evaluators_.clear();
     workspaces_.clear();
@@ -99,6 +99,12 @@ json fired_json(const gait::ControllerSet& set, const FrameInputs& frame, std::s
   for (int s = 0; s < gait::kSlotCount; ++s) {
     const gait::Controller& c = set.controllers.at(static_cast<std::size_t>(s));
     const bool swing = swing_slot(s);
+    const std::string name(gait::slot_name(s));
+    if (frame.swing[0] != swing && frame.swing[1] != swing) {
+      // No leg in this slot's phase (the swing slots in double support): it drives nothing now.
+      controllers[name] = {{"leg", nullptr}};
+      continue;
+    }
     const std::size_t leg = frame.swing[0] == swing ? 0 : 1;
     // The inputs as sent, and everything else evaluated at them: what the page shows is the
     // library's evaluation at the numbers it shows.
@@ -113,11 +119,10 @@ json fired_json(const gait::ControllerSet& set, const FrameInputs& frame, std::s
     for (double& x : rules)
       x = rounded(x);
     fuzzy::Workspace workspace = c.make_workspace();
-    controllers[std::string(gait::slot_name(s))] = {
-        {"leg", leg == 0 ? "left" : "right"},
-        {"inputs", inputs},
-        {"rules", rules},
-        {"output", rounded(c.evaluate(metrics, workspace))}};
+    controllers[name] = {{"leg", leg == 0 ? "left" : "right"},
+                         {"inputs", inputs},
+                         {"rules", rules},
+                         {"output", rounded(c.evaluate(metrics, workspace))}};
   }
   return {{"time", frame.time}, {"frame", index}, {"controllers", controllers}};
 }

@@ -24,6 +24,8 @@ RecoveryReport walk_from_random_start(const gait::ControllerSet& set, gait::Walk
                                       double seconds) {
   options.start.random = true;
   options.start.seed = seed;
+  // The steps are counted from the strikes: room for a time step's events, whatever was asked.
+  options.event_capacity = std::max<std::size_t>(options.event_capacity, 8);
   gait::Walker walker(set, options, ground);
   RecoveryReport r;
   r.start = {walker.state().legs[0].angles, walker.state().legs[1].angles};
