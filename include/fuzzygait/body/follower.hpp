@@ -10,13 +10,17 @@
 //            frame turns about its heel.
 //   legs     hip to ankle by two-bone IK in 3-D, the knee bending towards the walker's knee
 //            (along the foot's heading); thigh and shank keep their lengths.
-//   trunk    upright over the hips, facing the path; the head turns to the path look_ahead
-//            metres ahead; the arms hang (no arm swing or trunk counter-rotation yet).
+//   upper    the walker's controller set's upper body (ControllerSet::upper_body): the arms
+//   body     swing at shoulder and elbow against their own legs, the pelvis and the chest turn
+//            about the vertical with the legs, the chest against the pelvis; a set without them
+//            hangs the arms and keeps pelvis and chest square to the path. The trunk stays
+//            upright; the head turns to the path look_ahead metres ahead.
 // On a straight path with step_width equal to the hip width the legs are the walker's to
 // rounding.
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "fuzzygait/body/humanoid.hpp"
 #include "fuzzygait/gait/walker.hpp"
@@ -33,6 +37,8 @@ struct FollowerOptions {
   double swing_release = 0.6;
   // How far ahead along the path the head looks (m, 0 to 5).
   double look_ahead = 0.5;
+  // false: the set's upper body controllers are not played (arms hang, pelvis and chest square).
+  bool upper_body = true;
 };
 
 class PathFollower {
@@ -74,12 +80,15 @@ class PathFollower {
   };
 
   FootFrame path_frame(double x, double lateral) const noexcept;
+  // The set's answer for `part` from leg `leg`'s metrics, radians; 0 without a controller.
+  double upper_body_angle(const gait::Walker& walker, gait::UpperBody part, int leg) noexcept;
 
   Humanoid humanoid_;
   const path::Path* path_;
   FollowerOptions options_;
   double step_width_ = 0.0;
   std::array<FootState, 2> feet_{};
+  std::vector<fuzzy::Workspace> workspaces_;  // one per upper body controller
   BodyPose pose_{};
   double drop_ = 0.0;
 };

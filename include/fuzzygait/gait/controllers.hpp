@@ -61,6 +61,16 @@ inline fuzzy::Workspace& workspace_at(std::vector<fuzzy::Workspace>& workspaces,
 }
 }  // namespace detail
 
+// The upper body's controllers (the manifest's "upper_body"): each answers an angle in degrees
+// (not a velocity: the upper body follows the legs) from one leg's metrics. The shoulder (the
+// upper arm's inclination forward of the vertical) and the elbow (flexion) read their own side's
+// leg; each side's pelvis and thorax turn (forward +) read the other side's leg, and the body
+// turns by the left's minus the right's.
+enum class UpperBody : std::uint8_t { Shoulder, Elbow, PelvisRotation, ThoraxRotation };
+inline constexpr int kUpperBodyCount = 4;
+// "shoulder", "elbow", "pelvis_rotation", "thorax_rotation".
+std::string_view upper_body_name(UpperBody part);
+
 // The kinds of ground a controller set may have words for (the manifest's "terrain").
 enum class Ground : std::uint8_t { Slopes, Stairs };
 inline constexpr int kGroundCount = 2;
@@ -145,6 +155,10 @@ struct ControllerSet {
   // The paces the stride is written for (its input's range).
   double slowest_pace() const;
   double fastest_pace() const;
+  // The upper body's controllers, by UpperBody; a part without one holds still (arms hanging,
+  // pelvis and chest square to the path). They read delta, other_delta, hip, knee, ankle, toe and
+  // pace only (body::PathFollower supplies those).
+  std::array<std::optional<Controller>, kUpperBodyCount> upper_body;
 
   // How the controllers change with the ground (the manifest's "terrain": "slopes" for level
   // ground and ramps, "stairs"): words for the incline (such as down, level, up) peaking at given

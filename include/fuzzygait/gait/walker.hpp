@@ -170,6 +170,7 @@ class Walker {
   bool in_contact(rig::Side side) const noexcept { return phase(side) != Phase::Swing; }
   double time() const noexcept { return state_.time; }
   const rig::Segments& segments() const noexcept { return segments_; }
+  const ControllerSet& controllers() const noexcept { return *controllers_; }
 
   // Contact events since the last clear_events(), at most WalkerOptions::event_capacity (the
   // oldest dropped).

@@ -46,6 +46,15 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
     manifest["stride"] = "stride.fll";
     write_file(directory / "stride.fll", fuzzy::write_fll(set.stride->engine()));
   }
+  nlohmann::ordered_json upper_body;
+  for (int p = 0; p < gait::kUpperBodyCount; ++p) {
+    const auto& controller = set.upper_body[static_cast<std::size_t>(p)];
+    if (!controller) continue;
+    const std::string part(gait::upper_body_name(static_cast<gait::UpperBody>(p)));
+    upper_body[part] = "upper_body_" + part + ".fll";
+    write_file(directory / ("upper_body_" + part + ".fll"), fuzzy::write_fll(controller->engine()));
+  }
+  if (!upper_body.empty()) manifest["upper_body"] = upper_body;
   // The terrain words: each kind of ground's words, and its files named GROUND_SLOT_WORD.fll.
   nlohmann::ordered_json terrain;
   constexpr std::array<const char*, gait::kGroundCount> kGroundNames = {"slopes", "stairs"};

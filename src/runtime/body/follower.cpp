@@ -81,6 +81,29 @@ PathFollower::PathFollower(const Humanoid& humanoid, const path::Path& path,
         number_text(difference) + " m): make the walker with humanoid.segments()");
   }
   step_width_ = options.step_width_per_leg_length * a.leg_length();
+  for (const auto& controller : walker.controllers().upper_body) {
+    workspaces_.push_back(controller ? controller->make_workspace() : fuzzy::Workspace{});
+  }
+}
+
+double PathFollower::upper_body_angle(const gait::Walker& walker, gait::UpperBody part,
+                                      int leg) noexcept {
+  const auto p = static_cast<std::size_t>(part);
+  const auto& controller = walker.controllers().upper_body[p];
+  if (!options_.upper_body || !controller) return 0.0;
+  const gait::WalkerState& state = walker.state();
+  const gait::LegState& l = state.legs[static_cast<std::size_t>(leg)];
+  gait::MetricValues metrics{};
+  auto set = [&](gait::Metric m, double value) { metrics[static_cast<std::size_t>(m)] = value; };
+  set(gait::Metric::Delta, l.delta);
+  set(gait::Metric::OtherDelta, state.legs[static_cast<std::size_t>(1 - leg)].delta);
+  set(gait::Metric::Hip, rig::degrees(l.angles.hip));
+  set(gait::Metric::Knee, rig::degrees(l.angles.knee));
+  set(gait::Metric::Ankle, rig::degrees(l.angles.ankle));
+  set(gait::Metric::Toe, rig::degrees(l.angles.toe));
+  set(gait::Metric::Pace, gait::Walker::pace(state.speed, walker.segments()));
+  const double degrees = controller->evaluate(metrics, workspaces_[p]);
+  return std::isfinite(degrees) ? degrees * (std::numbers::pi / 180.0) : 0.0;
 }
 
 PathFollower::FootFrame PathFollower::path_frame(double x, double lateral) const noexcept {
@@ -95,7 +118,14 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
   const rig::Pose sagittal = walker.pose();
   const path::PathSample at_hips = path_->at(sagittal.pelvis.x);
   const Quat facing = yaw(at_hips.heading);
-  const Quat pelvis = facing * axis_angle(kLeft, sagittal.pelvis_tilt);
+  // Each side turns forward by the answer to the other side's leg; the body turns right (heading
+  // turns left +) as its left side comes forward.
+  auto turn = [&](gait::UpperBody part) {
+    return upper_body_angle(walker, part, 0) - upper_body_angle(walker, part, 1);
+  };
+  const Quat pelvis =
+      facing * yaw(turn(gait::UpperBody::PelvisRotation)) * axis_angle(kLeft, sagittal.pelvis_tilt);
+  const Quat thorax = facing * yaw(turn(gait::UpperBody::ThoraxRotation));
   const Vec3 hips_before_drop{at_hips.point.x, sagittal.pelvis.y, at_hips.point.z};
   const rig::Segments segments = humanoid_.segments();
   const double reach = segments.thigh + segments.shank;
@@ -183,10 +213,19 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
 
   pose_.rotation[index(Joint::hips)] = pelvis;
   for (const Joint trunk :
-       {Joint::spine, Joint::chest, Joint::neck, Joint::left_shoulder, Joint::left_upper_arm,
-        Joint::left_lower_arm, Joint::left_hand, Joint::right_shoulder, Joint::right_upper_arm,
-        Joint::right_lower_arm, Joint::right_hand}) {
-    pose_.rotation[index(trunk)] = facing;
+       {Joint::spine, Joint::chest, Joint::neck, Joint::left_shoulder, Joint::right_shoulder}) {
+    pose_.rotation[index(trunk)] = thorax;
+  }
+  for (const rig::Side side : rig::kSides) {
+    // The arm swings against its own leg.
+    const double shoulder = upper_body_angle(walker, gait::UpperBody::Shoulder, rig::index(side));
+    const double elbow = upper_body_angle(walker, gait::UpperBody::Elbow, rig::index(side));
+    const int arm = index(side == rig::Side::Left ? Joint::left_upper_arm : Joint::right_upper_arm);
+    const Quat upper = thorax * axis_angle(kLeft, -shoulder);
+    const Quat lower = upper * axis_angle(kLeft, -elbow);
+    pose_.rotation[static_cast<std::size_t>(arm)] = upper;
+    pose_.rotation[static_cast<std::size_t>(arm + 1)] = lower;  // the lower arm
+    pose_.rotation[static_cast<std::size_t>(arm + 2)] = lower;  // the hand
   }
   pose_.rotation[index(Joint::head)] =
       yaw(path_->at(sagittal.pelvis.x + options_.look_ahead).heading);

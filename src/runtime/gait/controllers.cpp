@@ -208,6 +208,49 @@ void read_ground(const Value& ground, const std::string& name,
   }
 }
 
+// The manifest's "upper_body": an object naming an FLL file for any of the parts, each reading
+// metrics the follower supplies and answering one angle.
+void read_upper_body(const Value& upper_body, const std::map<std::string, std::string>& files,
+                     const std::string& source, const std::string& manifest_source,
+                     ControllerSet& set) {
+  if (upper_body.kind != Value::Kind::Object) {
+    throw std::invalid_argument(where(manifest_source, upper_body) +
+                                "'upper_body' must be an object of part: FLL file");
+  }
+  for (const auto& [key, file] : upper_body.object) {
+    int part = -1;
+    for (int p = 0; p < kUpperBodyCount; ++p) {
+      if (upper_body_name(static_cast<UpperBody>(p)) == key) part = p;
+    }
+    if (part < 0) {
+      throw std::invalid_argument(where(manifest_source, file) + "unknown upper body part '" + key +
+                                  "' (shoulder, elbow, pelvis_rotation or thorax_rotation)");
+    }
+    if (file.kind != Value::Kind::String) {
+      throw std::invalid_argument(where(manifest_source, file) + "upper body part '" + key +
+                                  "' must name an FLL file (a string)");
+    }
+    const auto text = files.find(file.string);
+    if (text == files.end()) {
+      throw std::invalid_argument(where(manifest_source, file) + "upper body part '" + key +
+                                  "' names '" + file.string + "', which is not in the set");
+    }
+    const std::string path = source + "/" + file.string;
+    Controller c(fuzzy::read_fll(text->second, path, fuzzy::FllOptions{.finite_numbers = true}),
+                 path);
+    for (std::size_t i = 0; i < c.input_count(); ++i) {
+      const Metric m = c.input(i);
+      if (m == Metric::Sole || m == Metric::Incline || m == Metric::Stairs) {
+        throw std::invalid_argument(path +
+                                    ": the upper body reads delta, other_delta, hip, knee, "
+                                    "ankle, toe or pace, not '" +
+                                    std::string(metric_name(m)) + "'");
+      }
+    }
+    set.upper_body[static_cast<std::size_t>(part)].emplace(std::move(c));
+  }
+}
+
 // The manifest's "stride": the FLL file of the stride relation, one input "pace" and one output
 // (the step, leg lengths) that rises with the pace over the input's range.
 void read_stride(const Value& stride, const std::map<std::string, std::string>& files,
@@ -399,6 +442,12 @@ std::string_view slot_name(int slot) {
   return kSlotNames.at(static_cast<std::size_t>(slot));
 }
 
+std::string_view upper_body_name(UpperBody part) {
+  static constexpr std::array<std::string_view, kUpperBodyCount> kNames = {
+      "shoulder", "elbow", "pelvis_rotation", "thorax_rotation"};
+  return kNames.at(static_cast<std::size_t>(part));
+}
+
 std::string_view metric_name(Metric metric) {
   return kMetricNames.at(static_cast<std::size_t>(metric));
 }
@@ -518,6 +567,9 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
   }
   if (const Value* stride = manifest.find("stride")) {
     read_stride(*stride, files, source, manifest_source, set);
+  }
+  if (const Value* upper_body = manifest.find("upper_body")) {
+    read_upper_body(*upper_body, files, source, manifest_source, set);
   }
   if (const Value* terrain = manifest.find("terrain")) {
     read_terrain(*terrain, files, source, manifest_source, set);
