@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -42,6 +44,45 @@ std::string message_of(auto&& call) {
   return "(no error)";
 }
 
+// The VRM rig's joints under VRoid's names ("J_Bip_L_UpperLeg") or Unreal's ("thigh_l", below a
+// root bone on the floor).
+std::vector<testing::PlacedJoint> renamed(bool unreal) {
+  const std::map<std::string, std::pair<std::string, std::string>> names = {
+      {"hips", {"J_Bip_C_Hips", "pelvis"}},
+      {"spine", {"J_Bip_C_Spine", "spine_01"}},
+      {"chest", {"J_Bip_C_Chest", "spine_02"}},
+      {"upperChest", {"J_Bip_C_UpperChest", "spine_03"}},
+      {"neck", {"J_Bip_C_Neck", "neck_01"}},
+      {"head", {"J_Bip_C_Head", "head"}},
+      {"UpperLeg", {"UpperLeg", "thigh"}},
+      {"LowerLeg", {"LowerLeg", "calf"}},
+      {"Foot", {"Foot", "foot"}},
+      {"Toes", {"ToeBase", "ball"}},
+      {"Shoulder", {"Shoulder", "clavicle"}},
+      {"UpperArm", {"UpperArm", "upperarm"}},
+      {"LowerArm", {"LowerArm", "lowerarm"}},
+      {"Hand", {"Hand", "hand"}},
+      {"MiddleProximal", {"Middle1", "middle_01"}},
+  };
+  auto rename = [&](const std::string& name) -> std::string {
+    if (name.empty()) return unreal ? "root" : "";
+    if (const auto it = names.find(name); it != names.end()) {
+      return unreal ? it->second.second : it->second.first;
+    }
+    const bool left = name.starts_with("left");
+    const auto& [vroid, ue] = names.at(name.substr(left ? 4 : 5));
+    return unreal ? ue + (left ? "_l" : "_r") : "J_Bip_" + std::string(left ? "L_" : "R_") + vroid;
+  };
+  std::vector<testing::PlacedJoint> joints;
+  if (unreal) joints.push_back({"root", "", {0.0, 0.0, 0.0}});
+  for (testing::PlacedJoint j : vrm_joints()) {
+    j.name = rename(j.name);
+    j.parent = rename(j.parent);
+    joints.push_back(j);
+  }
+  return joints;
+}
+
 // The rigs of the tests: Mixamo's in centimetres facing -Z, facing +X, and lying Z-up facing -Y
 // (Blender's); the VRM one in metres facing +X.
 struct Rig {
@@ -51,13 +92,19 @@ struct Rig {
 std::vector<Rig> rigs() {
   const Quat face_back = axis_angle(kY, kPi);
   const Quat face_x = axis_angle(kY, kPi / 2);
-  const Quat z_up = axis_angle(kX, kPi / 2) * face_back;  // +Y to +Z; facing -Y
+  const Quat z_up = axis_angle(kX, kPi / 2) * face_back;       // +Y to +Z; facing -Y
+  std::vector<testing::PlacedJoint> rooted = mixamo_joints();  // a root bone on the floor
+  rooted.insert(rooted.begin(), {"Root", "", {0.1, 0.0, 0.3}});
+  rooted[1].parent = "Root";
   return {
       {"mixamo facing -Z", build_skeleton(mixamo_joints(), face_back, 0.01, 7)},
+      {"mixamo under a root bone", build_skeleton(rooted, face_back, 0.01, 8)},
       {"mixamo facing +X", build_skeleton(mixamo_joints(), face_x, 0.01, 11)},
       {"mixamo Z-up", build_skeleton(mixamo_joints(), z_up, 0.01, 13)},
       {"vrm facing +X", build_skeleton(vrm_joints(), face_x, 1.0, 17)},
       {"vrm facing +Z, no roll", build_skeleton(vrm_joints(), Quat{}, 1.0, 0)},
+      {"vrm with VRoid's names", build_skeleton(renamed(false), face_back, 1.0, 19)},
+      {"vrm with Unreal's names, Z-up", build_skeleton(renamed(true), z_up, 0.01, 23)},
   };
 }
 
@@ -189,6 +236,11 @@ TEST(BodyPoser, PosedSkeletonPutsEveryMappedJointWhereTheBodyPoseHasIt) {
   for (const Rig& rig : rigs()) {
     const HumanoidMap map = map_humanoid(rig.skeleton);
     const SkeletonPoser poser(rig.skeleton, map);
+    // Every joint found by name but the VRM rig's missing ends (head, toes).
+    EXPECT_GE(std::count_if(map.joint.begin(), map.joint.end(), [](int j) { return j >= 0; }),
+              rig.label.starts_with("mixamo") ? 26 : 23)
+        << rig.label << ":\n"
+        << describe(map, rig.skeleton);
     const std::vector<Vec3> rest = rest_positions(rig.skeleton);
     for (int k = 0; k < 12; ++k) {
       const BodyPose pose = walking_pose(poser.humanoid(), 0.6 * k, 0.5 * k - 2.0,
@@ -272,7 +324,9 @@ TEST(BodyPoser, RestOrientationsReproduceTheRestPose) {
     forward_kinematics(poser.humanoid(), {0, 1, 0}, pose);
     std::vector<Quat> local;
     const std::vector<Vec3> at = posed_positions(rig.skeleton, poser, pose, &local);
-    for (std::size_t j = 1; j < rig.skeleton.size(); ++j) {
+    // Below the hips (whose rotation carries the turn to face +Z), every joint's rest rotation.
+    for (std::size_t j = static_cast<std::size_t>(map[Joint::hips]) + 1; j < rig.skeleton.size();
+         ++j) {
       expect_same_rotation(local[j], rig.skeleton.joints[j].rotation, 1e-12,
                            rig.label + " " + rig.skeleton.joints[j].name);
     }

@@ -38,26 +38,29 @@ bool is_required(Joint joint);
 // compared without case and after any namespace prefix ending in ':' ("mixamorig:LeftUpLeg"), that
 // lies below the joint its canonical parent maps to and not on it (CMU's LowerBack and Neck sit
 // on Hips and Spine1 and are passed over for Spine and Neck1). The candidates, left side (the
-// right side swaps Left/left for Right/right):
-//   hips          Hips, Pelvis
-//   spine         Spine
-//   chest         Spine2 (Mixamo), Chest, UpperChest, Spine1 (CMU)
-//   neck          Neck, Neck1
-//   head          Head
+// right side swaps Left for Right, _L_ for _R_ and a last _l for _r):
+//   hips          Hips, Pelvis, J_Bip_C_Hips
+//   spine         Spine, J_Bip_C_Spine, spine_01
+//   chest         Spine2 (Mixamo), Chest, UpperChest, Spine1 (CMU), J_Bip_C_Chest, spine_05
+//                 (Unreal 5), spine_03 (Unreal 4)
+//   neck          Neck, Neck1, J_Bip_C_Neck, neck_01
+//   head          Head, J_Bip_C_Head
 //   headEnd       HeadTop_End, HeadEnd, Head_End, Head_Top
-//   leftUpperLeg  LeftUpLeg, LeftUpperLeg, LeftThigh
-//   leftLowerLeg  LeftLeg, LeftLowerLeg, LeftKnee, LeftShin
-//   leftFoot      LeftFoot, LeftAnkle
-//   leftToes      LeftToeBase, LeftToes, LeftToe
+//   leftUpperLeg  LeftUpLeg, LeftUpperLeg, LeftThigh, J_Bip_L_UpperLeg, thigh_l
+//   leftLowerLeg  LeftLeg, LeftLowerLeg, LeftKnee, LeftShin, J_Bip_L_LowerLeg, calf_l
+//   leftFoot      LeftFoot, LeftAnkle, J_Bip_L_Foot, foot_l
+//   leftToes      LeftToeBase, LeftToes, LeftToe, J_Bip_L_ToeBase, ball_l
 //   leftToesEnd   LeftToe_End, LeftToesEnd, LeftToeEnd, LeftToeBase_End
-//   leftShoulder  LeftShoulder, LeftCollar, LeftClavicle
-//   leftUpperArm  LeftArm, LeftUpperArm
-//   leftLowerArm  LeftForeArm, LeftLowerArm
-//   leftHand      LeftHand
-//   leftHandEnd   LeftHandMiddle1, LeftMiddleProximal, LeftHandEnd, LeftHand_End
+//   leftShoulder  LeftShoulder, LeftCollar, LeftClavicle, J_Bip_L_Shoulder, clavicle_l
+//   leftUpperArm  LeftArm, LeftUpperArm, J_Bip_L_UpperArm, upperarm_l
+//   leftLowerArm  LeftForeArm, LeftLowerArm, J_Bip_L_LowerArm, lowerarm_l
+//   leftHand      LeftHand, J_Bip_L_Hand, hand_l
+//   leftHandEnd   LeftHandMiddle1, LeftMiddleProximal, LeftHandEnd, LeftHand_End,
+//                 J_Bip_L_Middle1, middle_01_l
 //   heel          LeftHeel, LeftHeel_End
-// VRM's names (body::name) are among them, and fuzzygait's BVH writer's (io/bvh.hpp). An end
-// point left unmapped is found by humanoid_from_skeleton (body/skeleton_poser.hpp).
+// CMU's and Mixamo's names, VRM's (body::name), fuzzygait's BVH writer's (io/bvh.hpp), VRoid's
+// J_Bip ones and Unreal's mannequin's (whose root bone on the floor stays unmapped). An end point
+// left unmapped is found by humanoid_from_skeleton (body/skeleton_poser.hpp).
 // Throws std::invalid_argument naming each required canonical joint not found and the names tried.
 HumanoidMap map_humanoid(const Skeleton& skeleton);
 

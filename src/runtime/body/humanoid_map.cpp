@@ -18,23 +18,28 @@ struct Candidates {
 
 const std::vector<Candidates>& candidate_table() {
   static const std::vector<Candidates> table = {
-      {Joint::hips, {"Hips", "Pelvis"}},
-      {Joint::spine, {"Spine"}},
-      {Joint::chest, {"Spine2", "Chest", "UpperChest", "Spine1"}},
-      {Joint::neck, {"Neck", "Neck1"}},
-      {Joint::head, {"Head"}},
+      {Joint::hips, {"Hips", "Pelvis", "J_Bip_C_Hips"}},
+      {Joint::spine, {"Spine", "J_Bip_C_Spine", "spine_01"}},
+      {Joint::chest,
+       {"Spine2", "Chest", "UpperChest", "Spine1", "J_Bip_C_Chest", "spine_05", "spine_03"}},
+      {Joint::neck, {"Neck", "Neck1", "J_Bip_C_Neck", "neck_01"}},
+      {Joint::head, {"Head", "J_Bip_C_Head"}},
       {Joint::head_end, {"HeadTop_End", "HeadEnd", "Head_End", "Head_Top"}},
-      {Joint::left_upper_leg, {"LeftUpLeg", "LeftUpperLeg", "LeftThigh"}},
-      {Joint::left_lower_leg, {"LeftLeg", "LeftLowerLeg", "LeftKnee", "LeftShin"}},
-      {Joint::left_foot, {"LeftFoot", "LeftAnkle"}},
-      {Joint::left_toes, {"LeftToeBase", "LeftToes", "LeftToe"}},
+      {Joint::left_upper_leg,
+       {"LeftUpLeg", "LeftUpperLeg", "LeftThigh", "J_Bip_L_UpperLeg", "thigh_l"}},
+      {Joint::left_lower_leg,
+       {"LeftLeg", "LeftLowerLeg", "LeftKnee", "LeftShin", "J_Bip_L_LowerLeg", "calf_l"}},
+      {Joint::left_foot, {"LeftFoot", "LeftAnkle", "J_Bip_L_Foot", "foot_l"}},
+      {Joint::left_toes, {"LeftToeBase", "LeftToes", "LeftToe", "J_Bip_L_ToeBase", "ball_l"}},
       {Joint::left_toes_end, {"LeftToe_End", "LeftToesEnd", "LeftToeEnd", "LeftToeBase_End"}},
-      {Joint::left_shoulder, {"LeftShoulder", "LeftCollar", "LeftClavicle"}},
-      {Joint::left_upper_arm, {"LeftArm", "LeftUpperArm"}},
-      {Joint::left_lower_arm, {"LeftForeArm", "LeftLowerArm"}},
-      {Joint::left_hand, {"LeftHand"}},
+      {Joint::left_shoulder,
+       {"LeftShoulder", "LeftCollar", "LeftClavicle", "J_Bip_L_Shoulder", "clavicle_l"}},
+      {Joint::left_upper_arm, {"LeftArm", "LeftUpperArm", "J_Bip_L_UpperArm", "upperarm_l"}},
+      {Joint::left_lower_arm, {"LeftForeArm", "LeftLowerArm", "J_Bip_L_LowerArm", "lowerarm_l"}},
+      {Joint::left_hand, {"LeftHand", "J_Bip_L_Hand", "hand_l"}},
       {Joint::left_hand_end,
-       {"LeftHandMiddle1", "LeftMiddleProximal", "LeftHandEnd", "LeftHand_End"}},
+       {"LeftHandMiddle1", "LeftMiddleProximal", "LeftHandEnd", "LeftHand_End", "J_Bip_L_Middle1",
+        "middle_01_l"}},
   };
   return table;
 }
@@ -53,9 +58,15 @@ bool is_left(Joint joint) {
          (index(joint) >= index(Joint::left_shoulder) &&
           index(joint) < index(Joint::right_shoulder));
 }
+// The right side's name of a left candidate: "Left..." (Mixamo, CMU), "J_Bip_L_..." (VRoid),
+// "..._l" (Unreal).
 std::string to_right(std::string_view left_name) {
   std::string name(left_name);
   if (name.starts_with("Left")) return "Right" + name.substr(4);
+  if (const std::size_t at = name.find("_L_"); at != std::string::npos) {
+    return name.replace(at, 3, "_R_");
+  }
+  if (name.ends_with("_l")) name.back() = 'r';
   return name;
 }
 
