@@ -273,19 +273,12 @@ TEST(BvhSkeleton, CmuClipFrameRoundTripsThroughTheWriter) {
   }
 }
 
-TEST(GltfSkeleton, SkinReadWithItsArmaturesTurnAndScale) {
-  const body::Skeleton mixamo = body::testing::build_skeleton(
-      body::testing::mixamo_joints(), body::axis_angle({0, 1, 0}, kPi), 0.01, 41);
+// A glTF model of `skeleton`'s rest pose: its joints as a skin's nodes below `armature`.
+tinygltf::Model gltf_model(const body::Skeleton& skeleton, const tinygltf::Node& armature) {
   tinygltf::Model model;
-  tinygltf::Node armature;
-  armature.name = "Armature";
-  const Quat turn = body::axis_angle({1, 0, 0}, kPi / 2);
-  armature.rotation = {turn.x, turn.y, turn.z, turn.w};
-  armature.scale = {0.01, 0.01, 0.01};
-  armature.translation = {0.5, 0.0, -0.25};
   model.nodes.push_back(armature);
   tinygltf::Skin skin;
-  for (const body::SkeletonJoint& joint : mixamo.joints) {
+  for (const body::SkeletonJoint& joint : skeleton.joints) {
     tinygltf::Node node;
     node.name = joint.name;
     node.translation = {joint.offset.x, joint.offset.y, joint.offset.z};
@@ -302,11 +295,29 @@ TEST(GltfSkeleton, SkinReadWithItsArmaturesTurnAndScale) {
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   model.asset.version = "2.0";
+  return model;
+}
+
+std::filesystem::path write_gltf(tinygltf::Model& model, const std::string& name, bool binary) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "fuzzygait_skeleton";
   std::filesystem::create_directories(dir);
-  const std::filesystem::path file = dir / "mixamo.gltf";
+  const std::filesystem::path file = dir / name;
   tinygltf::TinyGLTF writer;
-  ASSERT_TRUE(writer.WriteGltfSceneToFile(&model, file.string(), false, true, true, false));
+  EXPECT_TRUE(writer.WriteGltfSceneToFile(&model, file.string(), false, true, true, binary));
+  return file;
+}
+
+TEST(GltfSkeleton, SkinReadWithItsArmaturesTurnAndScale) {
+  const body::Skeleton mixamo = body::testing::build_skeleton(
+      body::testing::mixamo_joints(), body::axis_angle({0, 1, 0}, kPi), 0.01, 41);
+  tinygltf::Node armature;
+  armature.name = "Armature";
+  const Quat turn = body::axis_angle({1, 0, 0}, kPi / 2);
+  armature.rotation = {turn.x, turn.y, turn.z, turn.w};
+  armature.scale = {0.01, 0.01, 0.01};
+  armature.translation = {0.5, 0.0, -0.25};
+  tinygltf::Model model = gltf_model(mixamo, armature);
+  const std::filesystem::path file = write_gltf(model, "mixamo.gltf", false);
 
   const body::Skeleton read = read_gltf_skeleton(file);
   EXPECT_DOUBLE_EQ(read.metres_per_unit, 0.01);
@@ -321,8 +332,47 @@ TEST(GltfSkeleton, SkinReadWithItsArmaturesTurnAndScale) {
   // It poses as the rig it was made from (turned Z-up by the armature).
   const body::SkeletonPoser poser(read, body::map_humanoid(read));
   EXPECT_NEAR(poser.humanoid().segments().thigh, 0.42, 1e-9);
+  EXPECT_FALSE(read_vrm_humanoid_map(file, read).has_value());
   EXPECT_THROW(read_gltf_skeleton(file, 1), std::invalid_argument);
-  EXPECT_THROW(read_gltf_skeleton(dir / "missing.gltf"), std::invalid_argument);
+  EXPECT_THROW(read_gltf_skeleton(file.parent_path() / "missing.gltf"), std::invalid_argument);
+}
+
+TEST(GltfSkeleton, VrmExtensionsGiveTheMapWhateverTheNames) {
+  // The VRM rig with names no convention knows: only the extension tells the bones.
+  const body::Skeleton named =
+      body::testing::build_skeleton(body::testing::vrm_joints(), Quat{}, 1.0, 3);
+  body::Skeleton anonymous = named;
+  for (std::size_t j = 0; j < anonymous.size(); ++j) {
+    anonymous.joints[j].name = "bone_" + std::to_string(j);
+  }
+  const body::HumanoidMap expected = body::map_humanoid(named);
+  for (const bool version_1 : {true, false}) {
+    tinygltf::Node armature;
+    armature.name = "Armature";
+    tinygltf::Model model = gltf_model(anonymous, armature);
+    tinygltf::Value::Object by_bone;
+    tinygltf::Value::Array listed;
+    for (std::size_t j = 0; j < named.size(); ++j) {
+      const std::string& bone = named.joints[j].name;  // VRM's own bone names
+      const int node = static_cast<int>(j) + 1;        // after the armature
+      by_bone[bone] = tinygltf::Value(tinygltf::Value::Object{{"node", tinygltf::Value(node)}});
+      listed.push_back(tinygltf::Value(tinygltf::Value::Object{{"bone", tinygltf::Value(bone)},
+                                                               {"node", tinygltf::Value(node)}}));
+    }
+    const tinygltf::Value humanoid(tinygltf::Value::Object{
+        {"humanBones", version_1 ? tinygltf::Value(by_bone) : tinygltf::Value(listed)}});
+    const std::string extension = version_1 ? "VRMC_vrm" : "VRM";
+    model.extensions[extension] = tinygltf::Value(tinygltf::Value::Object{{"humanoid", humanoid}});
+    model.extensionsUsed.push_back(extension);
+    const std::filesystem::path file =
+        write_gltf(model, version_1 ? "rig_1.vrm" : "rig_0.vrm", true);
+
+    const body::Skeleton read = read_gltf_skeleton(file);
+    EXPECT_THROW(body::map_humanoid(read), std::invalid_argument);  // no name is known
+    const std::optional<body::HumanoidMap> map = read_vrm_humanoid_map(file, read);
+    ASSERT_TRUE(map.has_value()) << extension;
+    EXPECT_EQ(map->joint, expected.joint) << extension;
+  }
 }
 
 }  // namespace

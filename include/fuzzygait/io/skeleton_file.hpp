@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "fuzzygait/body/humanoid_map.hpp"
 #include "fuzzygait/body/skeleton.hpp"
 #include "fuzzygait/io/mocap.hpp"
 
@@ -44,6 +45,16 @@ void bvh_frame(const BvhClip& clip, std::size_t frame, std::span<body::Quat> loc
 // naming the file for a file TinyGLTF cannot load, no skin or a skin index out of range, a skin
 // whose joints do not form one tree, a node with a non-uniform or non-positive scale.
 body::Skeleton read_gltf_skeleton(const std::filesystem::path& path, int skin = 0);
+
+// The humanoid map a VRM file declares (a glTF or GLB, .vrm included, with the VRMC_vrm 1.0 or
+// the VRM 0.x extension): each human bone's node, found in `skeleton` (read_gltf_skeleton of the
+// same file) by its name. VRM's bone names are the canonical joints' (body::name); its
+// MiddleProximal finger bones stand for the hands' ends; bones the canonical body lacks
+// (upperChest, eyes, jaw, the other fingers) are left out. std::nullopt when the file has neither
+// extension. Throws std::invalid_argument naming the file for a file TinyGLTF cannot load, a bone
+// whose node is not a joint of `skeleton`, or a map that body::validate refuses.
+std::optional<body::HumanoidMap> read_vrm_humanoid_map(const std::filesystem::path& path,
+                                                       const body::Skeleton& skeleton);
 
 struct SkeletonBvhOptions {
   // The rotation channels' order, the same on every joint: R = R(first) R(second) R(third).

@@ -3,6 +3,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 #include <ostream>
@@ -122,6 +123,28 @@ NodeTransform node_transform(const tinygltf::Node& node, const std::string& file
     t.scale = sx;
   }
   return t;
+}
+
+tinygltf::Model load_gltf(const std::filesystem::path& path) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string error;
+  std::string warning;
+  const std::string file = path.string();
+  std::string extension = path.extension().string();
+  for (char& c : extension)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool binary = extension == ".glb" || extension == ".vrm";
+  const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, file)
+                             : loader.LoadASCIIFromFile(&model, &error, &warning, file);
+  if (!loaded) throw std::invalid_argument(file + ": cannot load glTF: " + error);
+  return model;
+}
+
+// A node's name as a skeleton joint's: "joint<N>" for a nameless node.
+std::string joint_name(const tinygltf::Model& model, int node) {
+  const std::string& name = model.nodes[static_cast<std::size_t>(node)].name;
+  return name.empty() ? "joint" + std::to_string(node) : name;
 }
 
 }  // namespace
@@ -302,15 +325,8 @@ void write_skeleton_bvh(std::ostream& out, const body::Skeleton& skeleton,
 }
 
 body::Skeleton read_gltf_skeleton(const std::filesystem::path& path, int skin_index) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string error;
-  std::string warning;
+  const tinygltf::Model model = load_gltf(path);
   const std::string file = path.string();
-  const bool binary = path.extension() == ".glb" || path.extension() == ".GLB";
-  const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, file)
-                             : loader.LoadASCIIFromFile(&model, &error, &warning, file);
-  if (!loaded) throw std::invalid_argument(file + ": cannot load glTF: " + error);
   if (skin_index < 0 || skin_index >= static_cast<int>(model.skins.size())) {
     throw std::invalid_argument(file + ": no skin " + std::to_string(skin_index) +
                                 " (the file has " + std::to_string(model.skins.size()) + ")");
@@ -356,7 +372,7 @@ body::Skeleton read_gltf_skeleton(const std::filesystem::path& path, int skin_in
     const int node_index = joints[static_cast<std::size_t>(s)];
     const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(node_index)];
     body::SkeletonJoint joint;
-    joint.name = node.name.empty() ? "joint" + std::to_string(node_index) : node.name;
+    joint.name = joint_name(model, node_index);
     const int p = skin_slot(node_parent[static_cast<std::size_t>(node_index)]);
     joint.parent = p < 0 ? -1 : index_of[static_cast<std::size_t>(p)];
     const NodeTransform local = node_transform(node, file);
@@ -383,6 +399,68 @@ body::Skeleton read_gltf_skeleton(const std::filesystem::path& path, int skin_in
   }
   body::validate(skeleton);
   return skeleton;
+}
+
+}  // namespace fuzzygait::io
+
+namespace fuzzygait::io {
+
+std::optional<body::HumanoidMap> read_vrm_humanoid_map(const std::filesystem::path& path,
+                                                       const body::Skeleton& skeleton) {
+  const tinygltf::Model model = load_gltf(path);
+  const std::string file = path.string();
+  // (bone name, node) pairs: VRM 1.0 keys an object by bone; VRM 0.x lists {bone, node} objects.
+  std::vector<std::pair<std::string, int>> bones;
+  auto node_of = [](const tinygltf::Value& bone) {
+    return bone.IsObject() && bone.Has("node") && bone.Get("node").IsNumber()
+               ? bone.Get("node").GetNumberAsInt()
+               : -1;
+  };
+  auto humanoid_of = [&](const char* extension) -> const tinygltf::Value* {
+    const auto it = model.extensions.find(extension);
+    if (it == model.extensions.end() || !it->second.IsObject()) return nullptr;
+    const tinygltf::Value& humanoid = it->second.Get("humanoid");
+    return humanoid.IsObject() && humanoid.Has("humanBones") ? &humanoid.Get("humanBones")
+                                                             : nullptr;
+  };
+  if (const tinygltf::Value* human_bones = humanoid_of("VRMC_vrm")) {
+    if (human_bones->IsObject()) {
+      for (const std::string& key : human_bones->Keys()) {
+        bones.emplace_back(key, node_of(human_bones->Get(key)));
+      }
+    }
+  } else if (const tinygltf::Value* listed = humanoid_of("VRM")) {
+    for (std::size_t i = 0; i < listed->ArrayLen(); ++i) {
+      const tinygltf::Value& bone = listed->Get(static_cast<int>(i));
+      if (bone.IsObject() && bone.Has("bone") && bone.Get("bone").IsString()) {
+        bones.emplace_back(bone.Get("bone").Get<std::string>(), node_of(bone));
+      }
+    }
+  } else {
+    return std::nullopt;
+  }
+  body::HumanoidMap map;
+  for (const auto& [bone, node] : bones) {
+    const std::string canonical = bone == "leftMiddleProximal"    ? "leftHandEnd"
+                                  : bone == "rightMiddleProximal" ? "rightHandEnd"
+                                                                  : bone;
+    const std::optional<body::Joint> joint = body::joint_named(canonical);
+    if (!joint) continue;
+    const int found = node >= 0 && node < static_cast<int>(model.nodes.size())
+                          ? skeleton.find(joint_name(model, node))
+                          : -1;
+    if (found < 0) {
+      throw std::invalid_argument(file + ": VRM bone '" + bone + "' is node " +
+                                  std::to_string(node) + ", not a joint of the skeleton");
+    }
+    map[*joint] = found;
+  }
+  try {
+    body::validate(map, skeleton);
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(file + ": VRM humanoid: " + error.what());
+  }
+  return map;
 }
 
 }  // namespace fuzzygait::io
