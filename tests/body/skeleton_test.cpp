@@ -357,6 +357,33 @@ TEST(BodyPoser, RetargetsAnotherHumanoidsPoseByRotation) {
               "thigh");
 }
 
+TEST(BodyPoser, UnposeGivesBackTheBodyPose) {
+  for (const Rig& rig : rigs()) {
+    const HumanoidMap map = map_humanoid(rig.skeleton);
+    const SkeletonPoser poser(rig.skeleton, map);
+    std::vector<Quat> local(poser.joint_count());
+    std::vector<Quat> world(poser.joint_count());
+    for (int k = 0; k < 6; ++k) {
+      const BodyPose pose = walking_pose(poser.humanoid(), 0.9 * k, 0.7 * k, k + 1u);
+      Vec3 root;
+      ASSERT_TRUE(poser.pose(pose, local, root));
+      BodyPose back;
+      ASSERT_TRUE(poser.unpose(local, root, world, back));
+      for (std::size_t i = 0; i < kJointCount; ++i) {
+        const std::string what = rig.label + " " + std::string(name(static_cast<Joint>(i)));
+        expect_near(back.position[i], pose.position[i], 1e-9, what);
+        if (!is_end(static_cast<Joint>(i))) {
+          expect_same_rotation(back.rotation[i], pose.rotation[i], 1e-12, what);
+        }
+      }
+    }
+    BodyPose untouched;
+    local[3].y = std::nan("");
+    EXPECT_FALSE(poser.unpose(local, {}, world, untouched));
+    EXPECT_FALSE(poser.unpose(std::span<const Quat>(local).first(2), {}, world, untouched));
+  }
+}
+
 TEST(BodyPoser, NotFinitePoseGivesTheRestPoseAndFalse) {
   const Skeleton skeleton = build_skeleton(mixamo_joints(), Quat{}, 0.01, 4);
   const SkeletonPoser poser(skeleton, map_humanoid(skeleton));

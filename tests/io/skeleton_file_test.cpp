@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -140,6 +141,39 @@ TEST(BvhSkeleton, CmuFeetStandOnTheFloorWithinTheSidesDifference) {
             << highest * 1000 << " mm above the floor\n";
   EXPECT_GT(lowest, -0.006);
   EXPECT_LT(highest, 0.006);
+}
+
+TEST(BvhSkeleton, CmuClipUnposedGivesTheMocapReadersKnee) {
+  // The canonical body read off each frame of the clip bends its knees as analyse_clip measures
+  // them: the 3-D angle between thigh and shank.
+  const BvhClip clip = read_bvh_file(cmu_clip());
+  const body::Skeleton cmu = skeleton_from_bvh(clip);
+  const body::SkeletonPoser poser(cmu, body::map_humanoid(cmu));
+  const CapturedClip captured = read_clip(cmu_clip());
+  std::vector<Quat> local(cmu.size()), world(cmu.size());
+  double worst = 0.0;
+  double deepest = 0.0;
+  for (std::size_t i = 0; i < captured.motion.frames.size(); ++i) {
+    Vec3 root;
+    bvh_frame(clip, i + captured.skipped_frames, local, root);
+    body::BodyPose pose;
+    ASSERT_TRUE(poser.unpose(local, root, world, pose));
+    for (const rig::Side side : rig::kSides) {
+      const Vec3 thigh = pose[body::lower_leg(side)] - pose[body::upper_leg(side)];
+      const Vec3 shank = pose[body::foot(side)] - pose[body::lower_leg(side)];
+      const double knee = std::acos(
+          std::clamp(body::dot(body::normalized(thigh), body::normalized(shank)), -1.0, 1.0));
+      const double measured =
+          captured.motion.frames[i].pose.legs[static_cast<std::size_t>(rig::index(side))].knee;
+      worst = std::max(worst, std::abs(knee - measured));
+      deepest = std::max(deepest, knee);
+    }
+  }
+  std::cout << "CMU 07_01 unposed: " << captured.motion.frames.size()
+            << " frames, knee flexion up to " << deepest * 180 / kPi
+            << " deg, largest difference from analyse_clip " << worst * 180 / kPi << " deg\n";
+  EXPECT_LT(worst, 1e-5);              // radians: acos of a nearly straight knee loses digits
+  EXPECT_GT(deepest, 50 * kPi / 180);  // a walk's swing knee
 }
 
 // A few frames of a posed rig.

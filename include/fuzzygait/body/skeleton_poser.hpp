@@ -81,6 +81,17 @@ class SkeletonPoser {
   // the rest local rotations below the root.
   const std::array<Quat, kJointCount>& rest_orientations() const { return rest_orientations_; }
 
+  // The inverse of pose(): the BodyPose of humanoid() that a pose of the skeleton (its local
+  // rotations and root position, as pose() writes them or a BVH frame holds them) shows, so a
+  // clip of the game's skeleton can be measured or learned from as canonical angles. A mapped
+  // canonical joint takes the rotation that pose() would turn into the skeleton joint's world
+  // rotation, Q_J = W_s * B_s^-1 * C_J; an unmapped one its parent's; the hips sit where the
+  // skeleton's hip joints' midpoint is, and the rest follows by forward_kinematics. `world` is
+  // scratch of joint_count() rotations. Returns false and leaves `pose` alone when a value is
+  // not finite or a span has another size; never throws or allocates.
+  bool unpose(std::span<const Quat> local_rotations, Vec3 root_position, std::span<Quat> world,
+              BodyPose& pose) const;
+
  private:
   Humanoid humanoid_;
   std::array<Quat, kJointCount> rest_orientations_{};
@@ -96,6 +107,7 @@ class SkeletonPoser {
   Vec3 hips_joint_offset_;  // metres, canonical frame: the hips joint from the hips' midpoint
   Vec3 root_to_hips_rest_;  // skeleton units, rest world: from the root to the hips joint
   Vec3 root_rest_offset_;
+  std::vector<Vec3> offsets_;  // rest offsets, skeleton units
 };
 
 }  // namespace fuzzygait::body

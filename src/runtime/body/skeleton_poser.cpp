@@ -419,6 +419,9 @@ SkeletonPoser::SkeletonPoser(const Skeleton& skeleton, const HumanoidMap& map) {
   hips_joint_offset_ = fit.hips_joint_offset;
   root_to_hips_rest_ = rest[static_cast<std::size_t>(hips_joint_)] - rest[0];
   root_rest_offset_ = skeleton.joints[0].offset;
+  offsets_.resize(n);
+  for (std::size_t s = 0; s < n; ++s)
+    offsets_[s] = skeleton.joints[s].offset;
 }
 
 bool SkeletonPoser::pose(const BodyPose& body, std::span<Quat> local, Vec3& root_position) const {
@@ -449,6 +452,46 @@ bool SkeletonPoser::pose(const BodyPose& body, std::span<Quat> local, Vec3& root
       body[Joint::hips] +
       rotate(body.rotation[static_cast<std::size_t>(index(Joint::hips))], hips_joint_offset_);
   root_position = units_per_metre_ * hips_joint - root_to_hips_rest_;
+  return true;
+}
+
+}  // namespace fuzzygait::body
+
+namespace fuzzygait::body {
+
+bool SkeletonPoser::unpose(std::span<const Quat> local, Vec3 root_position, std::span<Quat> world,
+                           BodyPose& body) const {
+  const std::size_t n = parents_.size();
+  if (local.size() != n || world.size() != n || !finite(root_position)) return false;
+  for (std::size_t s = 0; s < n; ++s) {
+    if (!finite(local[s])) return false;
+    const int p = parents_[s];
+    world[s] = p < 0 ? local[s] : world[static_cast<std::size_t>(p)] * local[s];
+  }
+  std::array<Quat, kJointCount> rotation{};
+  std::array<bool, kJointCount> shown{};
+  for (std::size_t s = 0; s < n; ++s) {
+    if (!mapped_[s]) continue;
+    const auto j = static_cast<std::size_t>(anchor_[s]);
+    rotation[j] = normalized(world[s] * conjugate(from_anchor_[s]));
+    shown[j] = true;
+  }
+  for (std::size_t i = 1; i < kJointCount; ++i) {  // the rest follow their parents
+    if (!shown[i])
+      rotation[i] = rotation[static_cast<std::size_t>(index(*parent(static_cast<Joint>(i))))];
+  }
+  // The hips joint's position, walking up from it to the root.
+  Vec3 hips_joint = root_position;
+  for (int s = hips_joint_; parents_[static_cast<std::size_t>(s)] >= 0;
+       s = parents_[static_cast<std::size_t>(s)]) {
+    const auto p = static_cast<std::size_t>(parents_[static_cast<std::size_t>(s)]);
+    hips_joint = hips_joint + rotate(world[p], offsets_[static_cast<std::size_t>(s)]);
+  }
+  body.rotation = rotation;
+  const Vec3 hips =
+      (1.0 / units_per_metre_) * hips_joint -
+      rotate(rotation[static_cast<std::size_t>(index(Joint::hips))], hips_joint_offset_);
+  forward_kinematics(humanoid_, hips, body);
   return true;
 }
 
