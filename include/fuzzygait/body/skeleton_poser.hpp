@@ -47,8 +47,8 @@ namespace fuzzygait::body {
 //             a canonical joint the skeleton lacks takes humanoid_from_stature's offset with
 //             stature (thigh + shank) / 0.491, or, between two mapped joints, a share of the
 //             distance between them in humanoid_from_stature's proportions.
-// An end point the map leaves out is the joint before it's End Site, else its first child (past
-// children that lie on it). Stature: thigh + shank over 0.491 (Winter).
+// An end point the map leaves out is the End Site of the joint before it, else that joint's first
+// child (past children that lie on it). Stature: thigh + shank over 0.491 (Winter).
 // Throws std::invalid_argument naming the joints for a skeleton or map that validate refuses,
 // hip joints that coincide, a mapped bone of zero length, or proportions Humanoid's validate
 // refuses.
@@ -62,10 +62,13 @@ class SkeletonPoser {
   SkeletonPoser(const Skeleton& skeleton, const HumanoidMap& map);
 
   // The humanoid to walk with: humanoid_from_skeleton(skeleton, map). A BodyPose of it puts the
-  // posed skeleton's mapped joints where the BodyPose has them (exactly when the skeleton's legs
-  // mirror each other and its toe bases lie on its floor; otherwise within those differences). A
-  // BodyPose of another humanoid is applied as rotations (retargeting): the skeleton's hips
-  // follow the BodyPose's hips, its limbs keep their own lengths.
+  // posed skeleton's mapped joints where the BodyPose has them: exactly when the skeleton's legs
+  // mirror each other, its toe bases lie on its floor and no unmapped canonical joint between
+  // mapped ones turns (CMU's clavicles, which lie on its chest, stay unmapped and rigid with it);
+  // otherwise within those differences, each mapped bone still turning from its rest pose as its
+  // segment turns from the reference pose. A BodyPose of another humanoid is applied as rotations
+  // (retargeting): the skeleton's hips follow the BodyPose's hips, its limbs keep their own
+  // lengths.
   const Humanoid& humanoid() const { return humanoid_; }
   std::size_t joint_count() const { return parents_.size(); }
 
