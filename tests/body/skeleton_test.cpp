@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -268,7 +269,8 @@ TEST(BodyPoser, PosedSkeletonPutsEveryMappedJointWhereTheBodyPoseHasIt) {
       }
     }
   }
-  RecordProperty("worst_mapped_joint_error_m", std::to_string(worst));
+  std::cout << "Posed rigs: mapped joints at most " << worst << " m from the BodyPose\n";
+  RecordProperty("worst_mapped_joint_error_m", (std::ostringstream() << worst).str());
 }
 
 TEST(BodyPoser, ReferencePoseTurnsBonesToTheCanonicalDirections) {
