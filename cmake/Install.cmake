@@ -10,7 +10,7 @@ set(package_dir ${CMAKE_INSTALL_LIBDIR}/cmake/fuzzygait)
 install(TARGETS fuzzygait_runtime EXPORT fuzzygaitRuntimeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-foreach(part IN ITEMS fuzzy rig terrain gait)
+foreach(part IN ITEMS fuzzy rig terrain gait path body)
   install(DIRECTORY include/fuzzygait/${part} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fuzzygait
           COMPONENT runtime)
 endforeach()

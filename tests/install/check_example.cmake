@@ -52,6 +52,16 @@ endif()
 message(STATUS "the installed runtime builds and runs the example, linking ${linked}:\n"
                "${link_line}\n${run_output}")
 
+# The path example, from the runtime component alone: the whole body round a corner.
+run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/walk_a_path" -B "${WORK_DIR}/example_path"
+    -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}")
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/example_path")
+run("${WORK_DIR}/example_path/walk_a_path")
+if(NOT run_output MATCHES "left foot planted" OR NOT run_output MATCHES "path end \\(5\\.50, 4\\.50\\): reached")
+  message(FATAL_ERROR "the path example did not walk its path:\n${run_output}")
+endif()
+message(STATUS "the installed runtime builds and runs the path example:\n${run_output}")
+
 # The C example, from the runtime component alone: it walks, speeds up, has a bad request refused
 # with its reason, and walks a crowd.
 run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/walk_in_c" -B "${WORK_DIR}/example_c"

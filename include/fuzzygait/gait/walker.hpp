@@ -134,6 +134,9 @@ class Walker {
   // min_speed() to max_speed() or with a set that has no stride relation.
   Walker(const ControllerSet& controllers, const WalkerOptions& options,
          const terrain::Terrain& terrain);
+  // A temporary set or terrain would be gone before the first step.
+  Walker(ControllerSet&&, const WalkerOptions&, const terrain::Terrain&) = delete;
+  Walker(const ControllerSet&, const WalkerOptions&, terrain::Terrain&&) = delete;
 
   // Per frame: none of these throws or allocates.
 

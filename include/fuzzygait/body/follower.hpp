@@ -1,0 +1,87 @@
+// The whole body walking a path: poses a Humanoid from a walker's sagittal walk, bent onto a
+// path::Path. The walker walks the distance along the path (its x, with the terrain under the
+// path as its ground); the follower places the body in the world each frame:
+//   hips     on the path at the walker's pelvis distance, facing along it, tilted as the walker's
+//            pelvis; lowered only as far as the legs need to reach locked feet (pelvis_drop()).
+//   feet     on the path's ground frame at their own distance, step_width apart; a foot found
+//            planted is locked in the world until it lifts, so it never slides on a turn; a
+//            lifted foot eases from its stance frame onto the path's over the first part of its
+//            swing (swing_release), following the path meanwhile, so nothing pops; a foot's
+//            frame turns about its heel.
+//   legs     hip to ankle by two-bone IK in 3-D, the knee bending towards the walker's knee
+//            (along the foot's heading); thigh and shank keep their lengths.
+//   trunk    upright over the hips, facing the path; the head turns to the path look_ahead
+//            metres ahead; the arms hang (no arm swing or trunk counter-rotation yet).
+// On a straight path with step_width equal to the hip width the legs are the walker's to
+// rounding.
+#pragma once
+
+#include <array>
+
+#include "fuzzygait/body/humanoid.hpp"
+#include "fuzzygait/gait/walker.hpp"
+#include "fuzzygait/path/path.hpp"
+
+namespace fuzzygait::body {
+
+struct FollowerOptions {
+  // Distance between the feet's centre lines over leg length: 0.11 x 0.93 m = 0.10 m, adults'
+  // step width at free speed (8-12 cm).
+  double step_width_per_leg_length = 0.11;
+  // Share of the way from lift-off to the swing's target by which a lifted foot has moved from
+  // the frame it stood in to the path's frame (0.3 to 1); it starts at 0.15, toes clear.
+  double swing_release = 0.6;
+  // How far ahead along the path the head looks (m, 0 to 5).
+  double look_ahead = 0.5;
+};
+
+class PathFollower {
+ public:
+  // `path` must outlive the follower. Throws std::invalid_argument when the humanoid is not
+  // valid (validate), the walker's segments are not the humanoid's legs, or an option is out of
+  // range.
+  PathFollower(const Humanoid& humanoid, const path::Path& path, const gait::Walker& walker,
+               const FollowerOptions& options = {});
+  PathFollower(const Humanoid&, path::Path&&, const gait::Walker&,
+               const FollowerOptions& = {}) = delete;  // a temporary path would be gone
+
+  // Poses the body for the walker's state now: call it once a frame after advance(), at least
+  // once while each foot is planted. Deterministic: the same frames give the same poses.
+  const BodyPose& update(const gait::Walker& walker) noexcept;
+  const BodyPose& pose() const noexcept { return pose_; }
+  // How far the hips were lowered below the walker's pelvis at the last update (m, >= 0).
+  double pelvis_drop() const noexcept { return drop_; }
+  const Humanoid& humanoid() const noexcept { return humanoid_; }
+
+ private:
+  // A ground frame of a foot: where the walker's sagittal x `anchor` lies on the ground, and the
+  // heading the sagittal plane takes there.
+  struct FootFrame {
+    path::GroundPoint origin;
+    double heading = 0.0;
+    double anchor = 0.0;
+  };
+  struct FootState {
+    bool locked = false;
+    bool releasing = false;
+    FootFrame frame;         // locked: the stance frame
+    double release_x = 0.0;  // the heel's x when it lifted
+    // Releasing: how far the stance frame lay off the path's frame at lift-off, in the path's
+    // frame (m along, m to the left, radians).
+    double offset_along = 0.0;
+    double offset_left = 0.0;
+    double offset_turn = 0.0;
+  };
+
+  FootFrame path_frame(double x, double lateral) const noexcept;
+
+  Humanoid humanoid_;
+  const path::Path* path_;
+  FollowerOptions options_;
+  double step_width_ = 0.0;
+  std::array<FootState, 2> feet_{};
+  BodyPose pose_{};
+  double drop_ = 0.0;
+};
+
+}  // namespace fuzzygait::body
