@@ -273,6 +273,19 @@ TEST(BodyPoser, PosedSkeletonPutsEveryMappedJointWhereTheBodyPoseHasIt) {
   RecordProperty("worst_mapped_joint_error_m", (std::ostringstream() << worst).str());
 }
 
+TEST(BodyPoser, AHeelJointGivesTheHeel) {
+  std::vector<testing::PlacedJoint> joints = mixamo_joints();
+  joints.push_back({"mixamorig:LeftHeel", "mixamorig:LeftFoot", {0.09, 0.0, -0.06}});
+  joints.push_back({"mixamorig:RightHeel", "mixamorig:RightFoot", {-0.09, 0.0, -0.06}});
+  const Skeleton skeleton = build_skeleton(joints, axis_angle(kY, 2.0), 0.01, 6);
+  const HumanoidMap map = map_humanoid(skeleton);
+  EXPECT_EQ(map.heel[0], skeleton.find("mixamorig:LeftHeel"));
+  EXPECT_EQ(map.heel[1], skeleton.find("mixamorig:RightHeel"));
+  const Humanoid h = humanoid_from_skeleton(skeleton, map);
+  EXPECT_NEAR(h.heel, 0.06, 1e-12);
+  EXPECT_NEAR(h.segments().ankle_height, 0.08, 1e-12);  // the heel on the same floor
+}
+
 TEST(BodyPoser, ReferencePoseTurnsBonesToTheCanonicalDirections) {
   for (const Rig& rig : rigs()) {
     const HumanoidMap map = map_humanoid(rig.skeleton);
