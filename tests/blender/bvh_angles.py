@@ -10,37 +10,17 @@
 # the character elsewhere, the positions would not match the walk.
 # Angles come from each bone's head-to-tail direction, posed against rest, counter-clockwise in
 # the (forward, up) plane: pelvis tilt = -angle(Hips), thigh = angle(UpLeg), and so on.
-import builtins
 import math
+import os
 import sys
 
 import bpy
 
-# Debian 12's Blender 3.4 opens BVH files with mode 'rU', which Python 3.11 rejects.
-_open = builtins.open
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bvh_import import import_bvh  # noqa: E402 (after the path it lives on)
 
-
-def _open_without_u(file, mode="r", *args, **kwargs):
-    return _open(file, mode.replace("U", ""), *args, **kwargs)
-
-
-builtins.open = _open_without_u
-
-argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-if len(argv) != 2:
-    print("usage: blender -b --python bvh_angles.py -- IN.bvh OUT.csv", file=sys.stderr)
-    sys.exit(2)
-bvh_path, csv_path = argv
-
-bpy.ops.wm.read_factory_settings(use_empty=True)
-result = bpy.ops.import_anim.bvh(filepath=bvh_path, update_scene_fps=True,
-                                 update_scene_duration=True)
-builtins.open = _open
-if result != {"FINISHED"}:
-    sys.exit("Blender could not import %s: %s" % (bvh_path, result))
-
+armature, csv_path = import_bvh("usage: blender -b --python bvh_angles.py -- IN.bvh OUT.csv")
 scene = bpy.context.scene
-armature = next(o for o in scene.objects if o.type == "ARMATURE")
 world = armature.matrix_world
 pose = armature.pose.bones
 rest = armature.data.bones
@@ -100,6 +80,6 @@ for frame in range(frame_count):
         points += position(pose[name + "ToeBase"].tail)  # the End Site: the tip of the toes
     lines.append(",".join(row + points))
 
-with _open(csv_path, "w") as out:
+with open(csv_path, "w") as out:
     out.write("\n".join(lines) + "\n")
 print("bvh_angles.py: wrote %d frames at %g fps to %s" % (frame_count, fps, csv_path))

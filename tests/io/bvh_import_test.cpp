@@ -18,16 +18,14 @@
 #include "fuzzygait/io/walk_csv.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
 #include "support/import_check.hpp"
-#include "support/text.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using fuzzygait::eval::Motion;
-using fuzzygait::test::quote;
-using fuzzygait::test::read_table;
-using fuzzygait::test::read_text;
-using fuzzygait::test::run;
+using fuzzygait::test::import_with_blender;
+using fuzzygait::test::import_with_threejs;
+using fuzzygait::test::ImportRun;
 using fuzzygait::test::Table;
 
 constexpr double kAngleTolerance = 0.01;     // degrees
@@ -91,41 +89,20 @@ void expect_matches_walk(const Table& seen, const std::string& importer) {
 }
 
 TEST(BvhImport, ThreeJsBvhLoaderSeesTheWalksAngles) {
-  const std::string node = FUZZYGAIT_NODE;
-  if (node.empty()) {
-    GTEST_SKIP() << "node was not found when CMake configured: install Node.js and npm "
-                    "(scripts/install-deps.sh) and re-run cmake";
-  }
-  const fs::path js = FUZZYGAIT_THREEJS_DIR;
-  if (!fs::exists(js / "node_modules" / "three" / "package.json")) {
-    GTEST_SKIP() << "three.js is not installed in " << js.string()
-                 << "/node_modules: the fixture test threejs_npm_ci could not run npm ci (offline?"
-                    " see its output: ctest -R threejs_npm_ci -V)";
-  }
-  const fs::path out = walk().bvh.parent_path() / "threejs.csv";
-  const fs::path errors = walk().bvh.parent_path() / "threejs.err";
-  const int status = run(quote(node) + " " + quote((js / "bvh_angles.mjs").string()) + " " +
-                         quote(walk().bvh.string()) + " > " + quote(out.string()) + " 2> " +
-                         quote(errors.string()));
-  ASSERT_EQ(status, 0) << "node bvh_angles.mjs failed:\n" << read_text(errors);
-  EXPECT_EQ(read_text(errors), "") << "three.js complained";
-  expect_matches_walk(read_table(out), "three.js BVHLoader");
+  const ImportRun seen =
+      import_with_threejs(FUZZYGAIT_NODE, FUZZYGAIT_THREEJS_DIR, "bvh_angles.mjs", walk().bvh);
+  if (!seen.skipped.empty()) GTEST_SKIP() << seen.skipped;
+  ASSERT_EQ(seen.failed, "");
+  expect_matches_walk(seen.table, "three.js BVHLoader");
 }
 
 TEST(BvhImport, BlenderImporterSeesTheWalksAngles) {
-  const std::string blender = FUZZYGAIT_BLENDER;
-  if (blender.empty()) {
-    GTEST_SKIP() << "blender is not installed (optional check; Debian: apt-get install blender, "
-                    "then re-run cmake)";
-  }
-  const fs::path out = walk().bvh.parent_path() / "blender.csv";
-  const fs::path log = walk().bvh.parent_path() / "blender.log";
-  const std::string script = std::string(FUZZYGAIT_SOURCE_DIR) + "/tests/blender/bvh_angles.py";
-  const int status = run(quote(blender) + " -b --factory-startup --python-exit-code 1 --python " +
-                         quote(script) + " -- " + quote(walk().bvh.string()) + " " +
-                         quote(out.string()) + " > " + quote(log.string()) + " 2>&1");
-  ASSERT_EQ(status, 0) << "Blender failed:\n" << read_text(log);
-  expect_matches_walk(read_table(out), "Blender's BVH importer");
+  const ImportRun seen = import_with_blender(
+      FUZZYGAIT_BLENDER, fs::path(FUZZYGAIT_SOURCE_DIR) / "tests/blender/bvh_angles.py",
+      walk().bvh);
+  if (!seen.skipped.empty()) GTEST_SKIP() << seen.skipped;
+  ASSERT_EQ(seen.failed, "");
+  expect_matches_walk(seen.table, "Blender's BVH importer");
 }
 
 }  // namespace

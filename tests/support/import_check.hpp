@@ -36,7 +36,6 @@ inline int run(const std::string& command) {
   return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// A CSV of numbers with a header row.
 struct Table {
   std::map<std::string, std::size_t> columns;
   std::vector<std::vector<double>> rows;
@@ -65,6 +64,77 @@ inline Table read_table(const std::filesystem::path& path) {
     table.rows.push_back(std::move(row));
   }
   return table;
+}
+
+// What an importer's script saw of a file: its table, or why it was skipped or failed.
+struct ImportRun {
+  std::string skipped;  // the importer is not there
+  std::string failed;   // it ran and failed, or complained: its output
+  Table table;
+};
+
+// Runs `node SCRIPT INPUT` from `js` (the folder the threejs_npm_ci fixture installs three.js
+// into), writing NAME.csv and NAME.err beside INPUT. `node` is the program CMake found (empty:
+// none).
+inline ImportRun import_with_threejs(const std::string& node, const std::filesystem::path& js,
+                                     const std::string& script, const std::filesystem::path& input,
+                                     const std::string& name = "threejs") {
+  ImportRun seen;
+  if (node.empty()) {
+    seen.skipped =
+        "node was not found when CMake configured: install Node.js and npm "
+        "(scripts/install-deps.sh) and re-run cmake";
+    return seen;
+  }
+  if (!std::filesystem::exists(js / "node_modules" / "three" / "package.json")) {
+    seen.skipped = "three.js is not installed in " + js.string() +
+                   "/node_modules: the fixture test threejs_npm_ci could not run npm ci "
+                   "(offline? see its output: ctest -R threejs_npm_ci -V)";
+    return seen;
+  }
+  const std::filesystem::path out = input.parent_path() / (name + ".csv");
+  const std::filesystem::path errors = input.parent_path() / (name + ".err");
+  const int status =
+      run(quote(node) + " " + quote((js / script).string()) + " " + quote(input.string()) + " > " +
+          quote(out.string()) + " 2> " + quote(errors.string()));
+  std::ifstream complaints(errors);
+  std::ostringstream text;
+  text << complaints.rdbuf();
+  if (status != 0 || !text.str().empty()) {
+    seen.failed = "node " + script + " exited with " + std::to_string(status) + ":\n" + text.str();
+    return seen;
+  }
+  seen.table = read_table(out);
+  return seen;
+}
+
+// Runs `blender -b --python SCRIPT -- INPUT NAME.csv` (SCRIPT a path), its log in NAME.log beside
+// INPUT. `blender` is the program CMake found (empty: none).
+inline ImportRun import_with_blender(const std::string& blender,
+                                     const std::filesystem::path& script,
+                                     const std::filesystem::path& input,
+                                     const std::string& name = "blender") {
+  ImportRun seen;
+  if (blender.empty()) {
+    seen.skipped =
+        "blender is not installed (optional check; Debian: apt-get install blender, "
+        "then re-run cmake)";
+    return seen;
+  }
+  const std::filesystem::path out = input.parent_path() / (name + ".csv");
+  const std::filesystem::path log = input.parent_path() / (name + ".log");
+  const int status = run(quote(blender) + " -b --factory-startup --python-exit-code 1 --python " +
+                         quote(script.string()) + " -- " + quote(input.string()) + " " +
+                         quote(out.string()) + " > " + quote(log.string()) + " 2>&1");
+  if (status != 0) {
+    std::ifstream in(log);
+    std::ostringstream text;
+    text << in.rdbuf();
+    seen.failed = "Blender exited with " + std::to_string(status) + ":\n" + text.str();
+    return seen;
+  }
+  seen.table = read_table(out);
+  return seen;
 }
 
 // The largest difference of each kind, and where it is.

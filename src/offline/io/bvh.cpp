@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "offline/io/bvh_text.hpp"
 #include "offline/io/skeleton.hpp"
 
 namespace fuzzygait::io {
@@ -16,18 +17,9 @@ namespace {
 using detail::Joint;
 using detail::Vec3;
 
-// Fixed decimals, independent of the C locale, and never "-0.000000".
+// Six fixed decimals unless told (offline/io/bvh_text.hpp).
 void append(std::string& line, double value, int decimals = 6) {
-  char buffer[64];
-  const auto [end, error] =
-      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
-  if (error != std::errc()) throw std::invalid_argument("BVH: value out of range");
-  std::string_view text(buffer, static_cast<std::size_t>(end - buffer));
-  if (text.starts_with('-') && text.find_first_not_of("-0.") == std::string_view::npos) {
-    text.remove_prefix(1);
-  }
-  if (!line.empty()) line += ' ';
-  line += text;
+  detail::append_fixed(line, value, decimals);
 }
 
 std::string vector_text(const Vec3& v, double scale) {
