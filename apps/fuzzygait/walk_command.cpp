@@ -9,6 +9,9 @@
 #include <utility>
 
 #include "commands.hpp"
+#include "fuzzygait/body/follower.hpp"
+#include "fuzzygait/body/humanoid_map.hpp"
+#include "fuzzygait/body/skeleton_poser.hpp"
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/eval/terrain_report.hpp"
@@ -16,6 +19,8 @@
 #include "fuzzygait/io/files.hpp"
 #include "fuzzygait/io/gltf.hpp"
 #include "fuzzygait/io/normative.hpp"
+#include "fuzzygait/io/path_file.hpp"
+#include "fuzzygait/io/skeleton_file.hpp"
 #include "fuzzygait/io/terrain_spec.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
 #include "fuzzygait/plot/svg.hpp"
@@ -43,7 +48,36 @@ struct WalkOptions {
   std::string reference = "schwartz2008_free";
   bool gltf = false;
   std::string terrain = "flat";
+  std::string path;  // a path file: the whole body walks it
+  double corner_radius = 1.0;
+  std::string skeleton;  // a skeleton file: its proportions, and the body's BVH on it
 };
+
+// The whole body's walk (--path, --skeleton): a walker like the command's, bent onto the path and
+// posed on the skeleton, frame by frame at `fps`, until `frames` frames or, with frames 0, until
+// the hips pass the path's end. Writes PREFIX.body.bvh; returns the frames walked.
+std::size_t write_body_walk(const gait::ControllerSet& set, const gait::WalkerOptions& options,
+                            const terrain::Terrain& ground, const path::Path& route,
+                            const body::Skeleton& skeleton, const body::SkeletonPoser& poser,
+                            double fps, std::size_t frames, const std::string& file) {
+  gait::Walker walker(set, options, ground);
+  body::PathFollower follower(poser.humanoid(), route, walker);
+  std::vector<body::Quat> rotations;
+  std::vector<body::Vec3> roots;
+  const auto longest = static_cast<std::size_t>(3600.0 * fps);
+  for (std::size_t i = 0; frames > 0 ? i < frames : i < longest; ++i) {
+    if (i > 0) walker.advance(1.0 / fps);
+    rotations.resize(rotations.size() + poser.joint_count());
+    roots.emplace_back();
+    poser.pose(follower.update(walker),
+               std::span(rotations).subspan(rotations.size() - poser.joint_count()), roots.back());
+    if (frames == 0 && walker.pose().pelvis.x >= route.length() + 0.3) break;
+  }
+  io::write_file(file, [&](std::ostream& out) {
+    io::write_skeleton_bvh(out, skeleton, rotations, roots, {.frame_time = 1.0 / fps});
+  });
+  return roots.size();
+}
 
 gait::StartPose parse_start(const std::string& text) {
   gait::StartPose start;
@@ -155,13 +189,23 @@ void add_walk_command(CLI::App& app) {
   walk->add_flag("--gltf", o->gltf,
                  "Also write PREFIX.glb: glTF 2.0 with the skeleton, the animation, a skinned "
                  "body and the ground");
+  walk->add_option("--path", o->path,
+                   "Walk the whole body along a path: a CSV file of x,z points (metres, header "
+                   "x,z); writes PREFIX.body.bvh and walks to the path's end unless --duration "
+                   "or --cycles says otherwise");
+  walk->add_option("--corner-radius", o->corner_radius,
+                   "Radius the path's corners are rounded to, m (at least 0.5; default 1)");
+  walk->add_option("--skeleton", o->skeleton,
+                   "A humanoid skeleton (.bvh, .glb, .gltf or .vrm): the walk takes its leg "
+                   "lengths and PREFIX.body.bvh poses it");
   walk->add_option("--terrain", o->terrain,
                    "Ground: flat, slope:DEG[:LENGTH], stairs:RISE:TREAD:COUNT or profile:FILE.csv, "
                    "joined by + (default flat)");
   walk->footer(
       "Writes PREFIX.csv (one row per frame), PREFIX.terrain.csv (the ground walked), PREFIX.bvh,\n"
       "PREFIX.svg (joint angles over the gait cycle against the normative band) and\n"
-      "PREFIX.poses.svg; with --gltf also PREFIX.glb.\n"
+      "PREFIX.poses.svg; with --gltf also PREFIX.glb; with --path or --skeleton also\n"
+      "PREFIX.body.bvh, the whole body in 3-D (arms, trunk, turns).\n"
       "--terrain: a slope (-25 to 25 deg) or stairs (RISE 0.05-0.25 m, negative going down;\n"
       "TREAD 0.20-0.40 m) start at x = 1 m after level ground; stairs end in a level landing;\n"
       "parts joined by + follow one another: slope:8+stairs:0.17:0.28:6+flat.");
@@ -217,12 +261,66 @@ void add_walk_command(CLI::App& app) {
     options.speed = speed_given ? o->speed : 0.0;
     options.step_length = own_pace ? *set.body_step_length : o->step;
     options.start = parse_start(o->start_pose);
+    // The whole body: on a path, on a skeleton (its legs are the walk's), or neither.
+    const bool whole_body = !o->path.empty() || !o->skeleton.empty();
+    std::optional<path::Path> route;
+    std::optional<body::Skeleton> skeleton;
+    std::optional<body::SkeletonPoser> poser;
+    if (whole_body) {
+      if (!o->skeleton.empty() && body_given) {
+        throw std::invalid_argument(
+            "give --skeleton or a body (--stature, --thigh, ...), not both: the skeleton's legs "
+            "are the walk's");
+      }
+      route = o->path.empty() ? path::Path() : io::read_path_file(o->path, o->corner_radius);
+      if (!o->skeleton.empty()) {
+        const std::filesystem::path file(o->skeleton);
+        const std::string extension = file.extension().string();
+        if (extension == ".bvh") {
+          skeleton = io::read_bvh_skeleton(file);
+        } else if (extension == ".glb" || extension == ".gltf" || extension == ".vrm") {
+          skeleton = io::read_gltf_skeleton(file);
+        } else {
+          throw std::invalid_argument("--skeleton " + o->skeleton +
+                                      ": expected a .bvh, .glb, .gltf or .vrm file");
+        }
+        std::optional<body::HumanoidMap> map;
+        if (extension != ".bvh") map = io::read_vrm_humanoid_map(file, *skeleton);
+        poser.emplace(*skeleton, map ? *map : body::map_humanoid(*skeleton));
+        options.segments = poser->humanoid().segments();
+      } else {
+        body::Humanoid humanoid = body::humanoid_from_stature(o->stature);
+        const rig::Segments& s = options.segments;  // a trained set's, or given one by one
+        for (const rig::Side side : rig::kSides) {
+          humanoid[body::lower_leg(side)] = {0.0, -s.thigh, 0.0};
+          humanoid[body::foot(side)] = {0.0, -s.shank, 0.0};
+          humanoid[body::toes(side)] = {0.0, -s.ankle_height, s.ball};
+          humanoid[body::toes_end(side)] = {0.0, 0.0, s.toe};
+        }
+        humanoid[body::Joint::hips].y = s.leg_length();
+        humanoid.heel = s.heel;
+        skeleton = body::skeleton_of(humanoid);
+        poser.emplace(*skeleton, body::map_humanoid(*skeleton));
+      }
+    }
+    const std::filesystem::path prefix(o->prefix);
+    if (prefix.has_parent_path()) std::filesystem::create_directories(prefix.parent_path());
+    std::size_t body_frames = 0;
+    if (whole_body && !o->path.empty() &&
+        walk->count("--duration") + walk->count("--cycles") == 0) {
+      // Along a path with no length given: to its end, and the sagittal files as long.
+      body_frames = write_body_walk(set, options, ground, *route, *skeleton, *poser, o->fps, 0,
+                                    o->prefix + ".body.bvh");
+      o->duration = static_cast<double>(body_frames - 1) / o->fps;
+    }
     gait::Walker walker(set, options, ground);
     const double step = walker.step_length();
     const eval::Motion motion = o->duration > 0.0 ? eval::record(walker, o->duration, o->fps)
                                                   : eval::record_cycles(walker, o->cycles, o->fps);
-    const std::filesystem::path prefix(o->prefix);
-    if (prefix.has_parent_path()) std::filesystem::create_directories(prefix.parent_path());
+    if (whole_body && body_frames == 0) {
+      body_frames = write_body_walk(set, options, ground, *route, *skeleton, *poser, o->fps,
+                                    motion.frames.size(), o->prefix + ".body.bvh");
+    }
     io::write_file(o->prefix + ".csv",
                    [&motion](std::ostream& out) { io::write_walk_csv(out, motion); });
     io::write_file(o->prefix + ".terrain.csv", [&](std::ostream& out) {
@@ -236,6 +334,15 @@ void add_walk_command(CLI::App& app) {
               << " s) with controller set '" << set.name << "'\n";
     std::vector<std::string> written = {o->prefix + ".csv", o->prefix + ".terrain.csv",
                                         o->prefix + ".bvh"};
+    if (whole_body) {
+      std::cout << "the whole body " << (o->path.empty() ? "straight ahead" : "along the path")
+                << (o->path.empty() ? std::string()
+                                    : " (" + common::number_text(route->length()) + " m)")
+                << " on "
+                << (o->skeleton.empty() ? std::string("the stature's skeleton") : o->skeleton)
+                << ": " << body_frames << " frames\n";
+      written.push_back(o->prefix + ".body.bvh");
+    }
     if (o->gltf) written.push_back(o->prefix + ".glb");
     // Off level ground, the contact bounds are the terrain's (every leg point, edges too).
     const bool level = is_level(ground);

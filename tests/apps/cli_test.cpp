@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -377,6 +379,86 @@ TEST(EvalCommand, BadFilesNameTheFileAndLine) {
                                       step))
         << step;
   }
+}
+
+}  // namespace
+}  // namespace fuzzygait
+
+namespace fuzzygait {
+namespace {
+
+// The root's position (the first three numbers) on the last line of a BVH file's motion.
+std::array<double, 3> last_root_position(const std::string& bvh) {
+  std::istringstream lines(bvh);
+  std::string line, last;
+  while (std::getline(lines, line)) {
+    if (!line.empty()) last = line;
+  }
+  std::istringstream numbers(last);
+  std::array<double, 3> p{};
+  numbers >> p[0] >> p[1] >> p[2];
+  return p;
+}
+
+TEST(WalkCommand, WalksTheWholeBodyAlongAPath) {
+  const std::filesystem::path route = scratch("corner.csv");
+  std::ofstream(route) << "x,z\n0,0\n0,4\n# then to the left\n4,4\n";
+  const std::filesystem::path a = scratch("path_a");
+  const std::filesystem::path b = scratch("path_b");
+  for (const auto& prefix : {a, b}) {
+    const auto run = run_program("walk --path " + shell_quoted(route) +
+                                 " --speed 1.2 --fps 60 -o " + shell_quoted(prefix));
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_THAT(run.output, HasSubstr("the whole body along the path"));
+  }
+  const std::string bvh = read_text(a.string() + ".body.bvh");
+  EXPECT_EQ(bvh, read_text(b.string() + ".body.bvh"));
+  EXPECT_THAT(bvh, HasSubstr("ROOT hips"));
+  EXPECT_THAT(bvh, HasSubstr("JOINT leftUpperArm"));
+  // Walked to the path's end (4, 4) and a little past, facing +X: x beyond 4, z at 4.
+  const auto end = last_root_position(bvh);
+  EXPECT_GT(end[0], 4.0);
+  EXPECT_LT(end[0], 5.0);
+  EXPECT_NEAR(end[2], 4.0, 0.05);
+  // The sagittal files cover the same walk.
+  std::ifstream csv(a.string() + ".csv");
+  const eval::Motion m = io::read_walk_csv(csv, "path_a.csv");
+  EXPECT_THAT(bvh, HasSubstr("Frames: " + std::to_string(m.frames.size()) + "\n"));
+}
+
+TEST(WalkCommand, WalksTheBodyOnAMocapSkeleton) {
+  const std::filesystem::path prefix = scratch("on_cmu");
+  const auto run = run_program("walk --cycles 2 --fps 60 --skeleton " FUZZYGAIT_SOURCE_DIR
+                               "/data/mocap/cmu/07_01.bvh -o " +
+                               shell_quoted(prefix));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::string bvh = read_text(prefix.string() + ".body.bvh");
+  EXPECT_THAT(bvh, HasSubstr("JOINT LeftUpLeg"));
+  EXPECT_THAT(bvh, HasSubstr("JOINT LeftForeArm"));
+  // The walk took the clip's legs: thigh 0.397 m.
+  std::ifstream csv(prefix.string() + ".csv");
+  EXPECT_NEAR(io::read_walk_csv(csv, "on_cmu.csv").segments.thigh, 0.397, 0.002);
+  const auto both = run_program("walk --stature 1.8 --skeleton " FUZZYGAIT_SOURCE_DIR
+                                "/data/mocap/cmu/07_01.bvh -o " +
+                                shell_quoted(prefix));
+  EXPECT_NE(both.status, 0);
+  EXPECT_THAT(both.output, HasSubstr("give --skeleton or a body"));
+}
+
+TEST(WalkCommand, ABadPathFileNamesTheLine) {
+  const std::filesystem::path route = scratch("bad_path.csv");
+  std::ofstream(route) << "x,z\n0,0\n0,3\n0.1,0\n";  // turns back on itself at line 3
+  const auto run = run_program("walk --path " + shell_quoted(route) + " -o " +
+                               shell_quoted(scratch("bad_path")));
+  EXPECT_NE(run.status, 0);
+  EXPECT_THAT(run.output, HasSubstr("bad_path.csv:3"));
+  EXPECT_THAT(run.output, HasSubstr("turns back on itself"));
+  std::ofstream(route) << "x,z\n0,0\nnan,3\n";
+  const auto nan = run_program("walk --path " + shell_quoted(route) + " -o " +
+                               shell_quoted(scratch("bad_path")));
+  EXPECT_NE(nan.status, 0);
+  EXPECT_THAT(nan.output, HasSubstr("bad_path.csv:3"));
+  EXPECT_FALSE(std::filesystem::exists(scratch("bad_path.body.bvh")));
 }
 
 }  // namespace

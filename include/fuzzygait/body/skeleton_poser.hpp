@@ -54,6 +54,11 @@ namespace fuzzygait::body {
 // refuses.
 Humanoid humanoid_from_skeleton(const Skeleton& skeleton, const HumanoidMap& map);
 
+// The humanoid itself as a skeleton: its 21 joints named as VRM's (body::name), rest rotations
+// none, the end points as End Sites, the root standing its hips' height above the floor, metres.
+// map_humanoid finds every joint of it by name. Throws std::invalid_argument as validate does.
+Skeleton skeleton_of(const Humanoid& humanoid);
+
 // Poses one skeleton, every frame, without allocating: build once, call pose() per frame; const,
 // so one poser serves many characters and threads.
 class SkeletonPoser {

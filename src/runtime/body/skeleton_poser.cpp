@@ -495,4 +495,27 @@ bool SkeletonPoser::unpose(std::span<const Quat> local, Vec3 root_position, std:
   return true;
 }
 
+Skeleton skeleton_of(const Humanoid& humanoid) {
+  validate(humanoid);
+  Skeleton skeleton;
+  std::array<int, kJointCount> at{};  // each non-end joint's index in the skeleton
+  for (std::size_t j = 0; j < kJointCount; ++j) {
+    const auto joint = static_cast<Joint>(j);
+    const std::optional<Joint> up = parent(joint);
+    if (is_end(joint)) {
+      skeleton.joints[static_cast<std::size_t>(at[static_cast<std::size_t>(index(*up))])].end =
+          humanoid.offset[j];
+      continue;
+    }
+    at[j] = static_cast<int>(skeleton.joints.size());
+    SkeletonJoint s;
+    s.name = std::string(name(joint));
+    s.parent = up ? at[static_cast<std::size_t>(index(*up))] : -1;
+    s.offset = humanoid.offset[j];
+    skeleton.joints.push_back(std::move(s));
+  }
+  validate(skeleton);
+  return skeleton;
+}
+
 }  // namespace fuzzygait::body
