@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/eval/motion.hpp"
+#include "fuzzygait/eval/stall.hpp"
 #include "fuzzygait/eval/terrain_report.hpp"
 #include "fuzzygait/io/bvh.hpp"
 #include "fuzzygait/io/files.hpp"
@@ -274,6 +275,11 @@ void add_walk_command(CLI::App& app) {
     for (const std::string& f : written)
       std::cout << " " << f;
     std::cout << "\n";
+    // A frozen walk is a failure, not a walk: its files stay for a look, and the command fails
+    // naming when and where the walk stopped.
+    if (const std::optional<eval::Stall> stall = eval::find_stall(motion, ground)) {
+      throw std::runtime_error(eval::describe(*stall, ground) + "; the files are written");
+    }
   });
 }
 
