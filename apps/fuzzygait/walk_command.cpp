@@ -14,6 +14,7 @@
 #include "fuzzygait/body/skeleton_poser.hpp"
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/eval/motion.hpp"
+#include "fuzzygait/eval/stall.hpp"
 #include "fuzzygait/eval/terrain_report.hpp"
 #include "fuzzygait/io/bvh.hpp"
 #include "fuzzygait/io/files.hpp"
@@ -381,6 +382,11 @@ void add_walk_command(CLI::App& app) {
     for (const std::string& f : written)
       std::cout << " " << f;
     std::cout << "\n";
+    // A frozen walk is a failure, not a walk: its files stay for a look, and the command fails
+    // naming when and where the walk stopped.
+    if (const std::optional<eval::Stall> stall = eval::find_stall(motion, ground)) {
+      throw std::runtime_error(eval::describe(*stall, ground) + "; the files are written");
+    }
   });
 }
 

@@ -292,6 +292,40 @@ TEST(WalkCommand, ABadTerrainIsRefusedBeforeWritingAnything) {
   EXPECT_TRUE(std::filesystem::is_empty(folder)) << "files written before the refusal";
 }
 
+// Legs of a 1.00 m body (0.53 m) take stairs of at most 0.40 leg lengths, 0.212 m: a 0.23 m
+// descent is refused before anything is written, naming the rise and where it is. (It froze at
+// the top edge for the whole walk, with exit status 0.)
+TEST(WalkCommand, AStairTallerThanTheLegsTakeIsRefusedNamingTheRise) {
+  const std::filesystem::path folder = scratch("tall_stairs");
+  std::filesystem::create_directories(folder);
+  const auto run =
+      run_program("walk --stature 1.0 --step 0.4 --duration 20 --terrain stairs:-0.23:0.28:6 -o " +
+                  shell_quoted((folder / "walk").string()));
+  EXPECT_NE(run.status, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("the ground has a stair 0.23 m down at x = 1"));
+  EXPECT_THAT(run.output, HasSubstr("taller than these legs take one stair a step: 0.212 m"));
+  EXPECT_TRUE(std::filesystem::is_empty(folder)) << "files written before the refusal";
+}
+
+// Stairs the legs take but the walker does not yet (0.10 m down at 1.75 m: it steps in place
+// at the top) end in a failure naming when and where the walk stopped, its files written for a
+// look. (The walk exited with status 0.)
+TEST(WalkCommand, AWalkThatStallsFailsNamingWhenAndWhere) {
+  const std::filesystem::path prefix = scratch("stalled");
+  const auto run = run_program("walk --duration 20 --fps 60 --terrain stairs:-0.10:0.28:6 -o " +
+                               shell_quoted(prefix));
+  EXPECT_NE(run.status, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("fuzzygait: error: the walk stalled at "));
+  EXPECT_THAT(run.output, HasSubstr("with the pelvis at x = "));
+  EXPECT_THAT(run.output, HasSubstr("the front foot on run "));
+  EXPECT_THAT(run.output, HasSubstr("of 0-6 (before the 0.100 m drop at x = "));
+  EXPECT_TRUE(std::filesystem::exists(prefix.string() + ".csv"));
+  // A walk that goes on exits 0, as the stairs up above.
+  const auto going = run_program("walk --duration 20 --fps 60 --terrain stairs:-0.17:0.28:6 -o " +
+                                 shell_quoted(scratch("going")));
+  EXPECT_EQ(going.status, 0) << going.output;
+}
+
 TEST(EvalCommand, PrintsTheTableAndWritesTheJson) {
   const std::filesystem::path prefix = scratch("for_eval");
   ASSERT_EQ(run_program("walk --cycles 4 -o " + shell_quoted(prefix)).status, 0);

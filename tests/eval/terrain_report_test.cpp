@@ -8,10 +8,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -419,6 +422,74 @@ TEST(TerrainReport, EveryLegPointSlipsAndPenetratesAsPlaced) {
                                      "heel slip 2.00 mm a frame (bound 1 mm)",
                                      "ball slip 2.00 mm a frame (bound 1 mm)",
                                      "tip slip 2.00 mm a frame (bound 1 mm)"));
+}
+
+// A knee snapped 30 deg in one frame (the stair walks of trained sets snap 24-64 deg) is the
+// fastest joint, and misses the continuity bound; the planned walk's joints turn slower.
+TEST(TerrainReport, AJointSnappingInOneFrameMissesTheContinuityBound) {
+  const Terrain stairs = Terrain::stairs(0.17, 0.40, 8);
+  Motion walk = planned_walk(stair_plan(stairs));
+  // The planned walk's angles are set frame by frame; here every joint swings 30 deg either way
+  // once a second, at most 188 deg/s.
+  for (Frame& f : walk.frames) {
+    for (rig::LegAngles& leg : f.pose.legs)
+      leg.hip = leg.knee = leg.ankle = leg.toe = radians(30.0) * std::sin(2.0 * kPi * f.time);
+  }
+  const TerrainReport smooth = evaluate_terrain(walk, stairs);
+  EXPECT_LT(smooth.fastest_joint.speed, kFastestJointSpeed);
+  EXPECT_EQ(missed_continuity_bound(smooth, walk.fps), "");
+  for (std::size_t i = 250; i < walk.frames.size(); ++i)
+    walk.frames[i].pose.legs[1].knee += radians(30.0);
+  const TerrainReport snapped = evaluate_terrain(walk, stairs);
+  EXPECT_NEAR(snapped.fastest_joint.degrees, 30.0, 3.0);
+  EXPECT_NEAR(snapped.fastest_joint.speed, snapped.fastest_joint.degrees * walk.fps, 1e-6);
+  EXPECT_STREQ(snapped.fastest_joint.joint, "knee");
+  EXPECT_EQ(snapped.fastest_joint.side, rig::Side::Right);
+  EXPECT_DOUBLE_EQ(snapped.fastest_joint.time, walk.frames[250].time);
+  EXPECT_THAT(missed_continuity_bound(snapped, walk.fps),
+              ::testing::MatchesRegex("right knee turned [0-9.]+ deg in one frame at 2\\.500 s "
+                                      "\\([0-9]+ deg/s; people's fastest 455 deg/s, 4\\.[56] deg "
+                                      "a frame\\)"));
+  EXPECT_THAT(to_text(snapped), HasSubstr("fastest joint between two frames"));
+  EXPECT_EQ(nlohmann::json::parse(to_json(snapped)).at("fastest_joint").at("joint"), "knee");
+}
+
+// The continuity bound is the fastest slope of people's mean curves (Bovi et al. 2011's adults,
+// each task at its cadence): read again from the data, it is the constant's 455 deg/s.
+TEST(TerrainReport, PeoplesFastestJointSpeedIsTheNormativeDatasFastest) {
+  const std::filesystem::path data = std::filesystem::path(FUZZYGAIT_SOURCE_DIR) / "data";
+  auto rows = [](const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::vector<std::vector<std::string>> table;
+    for (std::string line; std::getline(in, line);) {
+      if (line.empty() || line[0] == '#') continue;
+      std::vector<std::string> cells;
+      std::stringstream cells_in(line);
+      for (std::string cell; std::getline(cells_in, cell, ',');)
+        cells.push_back(cell);
+      table.push_back(cells);
+    }
+    return table;
+  };
+  const auto parameters = rows(data / "parameters" / "bovi2011_adult_parameters.csv");
+  ASSERT_GT(parameters.size(), 1u);
+  const auto cadence_column =
+      std::find(parameters[0].begin(), parameters[0].end(), "cadence_mean") - parameters[0].begin();
+  double fastest = 0.0;
+  for (std::size_t t = 1; t < parameters.size(); ++t) {
+    const double cycle = 120.0 / std::stod(parameters[t][cadence_column]);
+    const auto curves = rows(data / "normative" / ("bovi2011_adult_" + parameters[t][0] + ".csv"));
+    ASSERT_GT(curves.size(), 2u) << parameters[t][0];
+    for (const char* joint : {"hip_mean", "knee_mean", "ankle_mean"}) {
+      const auto column = std::find(curves[0].begin(), curves[0].end(), joint) - curves[0].begin();
+      for (std::size_t i = 2; i < curves.size(); ++i) {
+        const double percent = std::stod(curves[i][0]) - std::stod(curves[i - 1][0]);
+        const double change = std::stod(curves[i][column]) - std::stod(curves[i - 1][column]);
+        fastest = std::max(fastest, std::abs(change) / (percent / 100.0 * cycle));
+      }
+    }
+  }
+  EXPECT_NEAR(fastest, kFastestJointSpeed, 0.5);
 }
 
 TEST(TerrainReport, GroundDistanceIsToTheNearestSurfaceHoweverSteep) {

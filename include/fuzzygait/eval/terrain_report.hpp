@@ -127,11 +127,29 @@ struct PointContact {
 inline constexpr std::array<const char*, 5> kContactPoints = {"knee", "ankle", "heel", "ball",
                                                               "tip"};
 
+// People's fastest joint speed (deg/s), the continuity bound: no leg joint of a walk may turn
+// faster between two frames (3.8 deg a frame at 120 fps). It is the steepest slope of any mean
+// curve of Bovi et al. 2011's adults (data/normative/bovi2011_adult_*.csv at the cadences of
+// data/parameters/bovi2011_adult_parameters.csv): the knee walking fast (task 'l', 141 steps a
+// minute), 455 deg/s; on stairs their fastest is 289 deg/s. The data has no toe curves; the toes
+// are held to the same bound.
+inline constexpr double kFastestJointSpeed = 455.0;
+
+// The fastest any leg joint (hip, knee, ankle or toes, either leg) turned between two frames.
+struct JointJump {
+  double speed = 0.0;    // deg/s: the change over the frame interval
+  double degrees = 0.0;  // the change, deg
+  double time = 0.0;     // s, of the later frame
+  rig::Side side = rig::Side::Left;
+  const char* joint = "hip";  // "hip", "knee", "ankle" or "toe"
+};
+
 struct TerrainReport {
   std::vector<TerrainStep> steps;        // in time order, both feet
   std::vector<TerrainGroup> groups;      // level, ramps up by angle, ramps down, stairs up, down
   std::array<PointContact, 5> points{};  // kContactPoints order
   int nan_frames = 0;                    // frames with a NaN or infinity anywhere
+  JointJump fastest_joint;               // over consecutive finite frames
   // The smallest distance between the sole outline and the ground (its surface and its edges)
   // in the middle 60 % of each complete swing, negative inside the ground; NaN without a swing.
   double min_swing_clearance = 0.0;
@@ -156,6 +174,11 @@ TerrainReport evaluate_terrain(const Motion& motion, const terrain::Terrain& ter
 // every leg point, swing clearance over the ground and its edges at least 10 mm, no NaN. Empty
 // when the walk meets them all.
 std::vector<std::string> missed_contact_bounds(const TerrainReport& report);
+
+// The continuity bound the walk misses, as a phrase with its figure, joint, time and bound
+// ("left knee turned 31.2 deg in one frame at 4.117 s (3744 deg/s; people's fastest 455 deg/s,
+// 3.8 deg a frame)"), or empty when no joint turned faster than kFastestJointSpeed.
+std::string missed_continuity_bound(const TerrainReport& report, double fps);
 
 // The report as tables people read (per kind of ground, each step, the leg points), and as JSON.
 std::string to_text(const TerrainReport& report);

@@ -31,6 +31,8 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "fuzzygait/gait/controllers.hpp"
@@ -131,7 +133,8 @@ class Walker {
   // keeps a workspace made for each of the set's controllers). Throws std::invalid_argument naming
   // the field for a bad rig or joint limits, a time step outside 0.00001-0.05 s, an incomplete
   // set, a step length outside min_step_length() to max_step_length(), or a speed outside
-  // min_speed() to max_speed() or with a set that has no stride relation.
+  // min_speed() to max_speed() or with a set that has no stride relation; and naming the rise
+  // and x of the first stair ahead of the feet taller than tallest_stair() (stair_too_tall()).
   Walker(const ControllerSet& controllers, const WalkerOptions& options,
          const terrain::Terrain& terrain);
   // A temporary set or terrain would be gone before the first step.
@@ -184,6 +187,21 @@ class Walker {
   static double min_step_length(const ControllerSet& controllers, const rig::Segments& segments);
   // Longest step the legs reach (metres): 1.2 leg lengths.
   static double max_step_length(const rig::Segments& segments);
+  // Tallest stair, up or down, these legs take one stair a step (metres): 0.40 leg lengths
+  // (Segments::leg_length()), as measured over statures and treads (docs/terrain.md).
+  static double tallest_stair(const rig::Segments& segments);
+  // A stair of the ground taller than tallest_stair(): where its risers begin (x, m), its rise
+  // (m, + up, - down, the height between the runs either side) and the tallest these legs take.
+  struct StairTooTall {
+    double x = 0.0;
+    double rise = 0.0;
+    double tallest = 0.0;
+  };
+  // The first stair at or beyond from_x (the walk goes +x) that these legs cannot take, or
+  // nothing: what the constructor refuses, for a game to ask before it builds a walker.
+  static std::optional<StairTooTall> stair_too_tall(
+      const terrain::Terrain& terrain, const rig::Segments& segments,
+      double from_x = -std::numeric_limits<double>::infinity());
   // v / sqrt(g * leg length): the pace of a speed (m/s) for these legs (Metric::Pace).
   static double pace(double speed, const rig::Segments& segments);
 

@@ -135,10 +135,13 @@ struct WalksCheck {
 // 0.60, 0.70 and 0.85 m at statures 1.50, 1.75 and 2.00 m, 10 s each.
 WalksCheck check_grid(const gait::ControllerSet& set);
 
-// The terrain walks the shipped sets are held to (tests/gait/terrain_walk_test.cpp), at this body
-// and step: eight 0.17 x 0.28 m stairs up and down (24 s, reaching the landing) and 10 deg ramps
-// up and down (16 s, steps on the ramp within 5 % of the command), each with no leg point deeper
-// than 1 mm in the ground (the toe tip 5 mm, against a riser) and no NaN.
+// Stairs and ramps at this body and step, priced as the terrain tests price them
+// (tests/gait/terrain_walk_test.cpp): eight 0.17 x 0.28 m stairs up and down (24 s, reaching the
+// landing) and 10 deg ramps up and down (16 s, steps on the ramp within 5 % of the command), each
+// within the terrain contact bounds (eval::missed_contact_bounds: every leg point slipping under
+// 1 mm a frame and under 1 mm in the ground, swing clearance at least 10 mm, no NaN) and the
+// continuity bound (eval::missed_continuity_bound: no joint faster than people's fastest between
+// two frames), recorded at 120 frames a second.
 WalksCheck check_terrain(const gait::ControllerSet& set, const rig::Segments& body, double step);
 
 // Random start poses (eval::walk_from_random_start, seeds 1000 on) at this body and step: walks

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -67,8 +68,12 @@ Motion record_cycles(gait::Walker& walker, int cycles, double fps) {
     if (begins_strike(motion, i, rig::Side::Left, left_strikes)) left_strikes.push_back(i);
     if (left_strikes.size() >= static_cast<std::size_t>(cycles) + 2) break;
     if (motion.frames.back().time > static_cast<double>(limit)) {
+      // Where it was then: a walk frozen at a stair's edge is told by its place.
+      char where[96];
+      std::snprintf(where, sizeof where, " (the pelvis at x = %.2f m, %.2f m up, at the end)",
+                    motion.frames.back().pose.pelvis.x, motion.frames.back().pose.pelvis.y);
       throw std::runtime_error("the walker did not complete " + std::to_string(cycles) +
-                               " cycles in " + std::to_string(limit) + " s");
+                               " cycles in " + std::to_string(limit) + " s" + where);
     }
   }
   return motion;

@@ -507,6 +507,28 @@ TerrainReport evaluate_terrain(const Motion& m, const Terrain& terrain) {
     }
   }
 
+  // The fastest turn of a leg joint between two finite frames.
+  for (std::size_t i = 1; i < n; ++i) {
+    if (!finite[i] || !finite[i - 1]) continue;
+    const double interval = m.frames[i].time - m.frames[i - 1].time;
+    if (!(interval > 0.0)) continue;
+    for (std::size_t s = 0; s < 2; ++s) {
+      const rig::LegAngles& now = m.frames[i].pose.legs[s];
+      const rig::LegAngles& before = m.frames[i - 1].pose.legs[s];
+      const std::pair<const char*, double> changes[] = {{"hip", now.hip - before.hip},
+                                                        {"knee", now.knee - before.knee},
+                                                        {"ankle", now.ankle - before.ankle},
+                                                        {"toe", now.toe - before.toe}};
+      for (const auto& [joint, change] : changes) {
+        const double degrees = rig::degrees(std::abs(change));
+        if (degrees / interval > r.fastest_joint.speed) {
+          r.fastest_joint = {degrees / interval, degrees, m.frames[i].time,
+                             static_cast<rig::Side>(s), joint};
+        }
+      }
+    }
+  }
+
   // Clearance in the middle 60 % of each complete swing, as evaluate()'s toe clearance.
   r.min_swing_clearance = kNaN;
   r.min_swing_clearance_time = kNaN;
@@ -574,6 +596,18 @@ std::vector<std::string> missed_contact_bounds(const TerrainReport& r) {
   }
   if (r.nan_frames > 0) missed.push_back(std::to_string(r.nan_frames) + " frames with NaN");
   return missed;
+}
+
+std::string missed_continuity_bound(const TerrainReport& r, double fps) {
+  const JointJump& j = r.fastest_joint;
+  if (!(j.speed > kFastestJointSpeed)) return {};
+  char line[240];
+  std::snprintf(line, sizeof line,
+                "%s %s turned %.1f deg in one frame at %.3f s (%.0f deg/s; people's fastest %.0f "
+                "deg/s, %.1f deg a frame)",
+                j.side == rig::Side::Left ? "left" : "right", j.joint, j.degrees, j.time, j.speed,
+                kFastestJointSpeed, kFastestJointSpeed / fps);
+  return line;
 }
 
 std::string to_text(const TerrainReport& r) {
@@ -675,6 +709,11 @@ std::string to_text(const TerrainReport& r) {
     out += line;
   };
   note("frames with NaN", std::to_string(r.nan_frames));
+  note("fastest joint between two frames",
+       figure(r.fastest_joint.speed, 1.0, 0) + " deg/s (" +
+           figure(r.fastest_joint.degrees, 1.0, 1) + " deg, " +
+           (r.fastest_joint.side == rig::Side::Left ? "left " : "right ") + r.fastest_joint.joint +
+           ", at " + figure(r.fastest_joint.time, 1.0, 3) + " s)");
   note("min swing clearance, mid-swing",
        figure(r.min_swing_clearance, 1e3, 2) + " mm" +
            (std::isnan(r.min_swing_clearance_time)
@@ -696,6 +735,11 @@ std::string to_json(const TerrainReport& r) {
   j["reached_end"] = r.reached_end ? Json(*r.reached_end) : Json(nullptr);
   j["cadence_steps_per_min"] = number(r.cadence);
   j["nan_frames"] = r.nan_frames;
+  j["fastest_joint"] = {{"speed_deg_per_s", r.fastest_joint.speed},
+                        {"change_deg", r.fastest_joint.degrees},
+                        {"time_s", r.fastest_joint.time},
+                        {"side", r.fastest_joint.side == rig::Side::Left ? "left" : "right"},
+                        {"joint", r.fastest_joint.joint}};
   for (std::size_t p = 0; p < kContactPoints.size(); ++p) {
     j["points"][kContactPoints[p]] = {{"max_slip_m_per_frame", r.points[p].max_slip},
                                       {"max_penetration_m", r.points[p].max_penetration},

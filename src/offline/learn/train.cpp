@@ -235,24 +235,18 @@ void count_walk(WalksCheck& check, const std::string& walk,
   check.misses.push_back(std::move(line));
 }
 
-// What a terrain walk misses of check_terrain's bounds.
-std::vector<std::string> missed_terrain_bounds(const eval::TerrainReport& r, bool stairs,
-                                               double step) {
-  std::vector<std::string> missed;
+// What a terrain walk misses of check_terrain's bounds: the terrain contact bounds
+// (eval::missed_contact_bounds), the continuity bound, reaching the end of stairs, and on a ramp
+// steps within 5 % of the command.
+std::vector<std::string> missed_terrain_bounds(const eval::TerrainReport& r, double fps,
+                                               bool stairs, double step) {
+  std::vector<std::string> missed = eval::missed_contact_bounds(r);
+  if (std::string jump = eval::missed_continuity_bound(r, fps); !jump.empty())
+    missed.push_back(std::move(jump));
   char line[160];
-  if (r.nan_frames > 0) missed.push_back(std::to_string(r.nan_frames) + " frames with NaN");
   if (stairs && !r.reached_end.value_or(false))
     missed.push_back("stopped on run " + std::to_string(r.last_run) + " of " +
                      std::to_string(r.runs - 1));
-  for (std::size_t p = 0; p < r.points.size(); ++p) {
-    const bool tip = std::string(eval::kContactPoints[p]) == "tip";
-    const double bound = tip ? 0.005 : 0.001;
-    if (r.points[p].max_penetration >= bound) {
-      std::snprintf(line, sizeof line, "%s %.1f mm in the ground (bound %.0f mm)",
-                    eval::kContactPoints[p], r.points[p].max_penetration * 1e3, bound * 1e3);
-      missed.emplace_back(line);
-    }
-  }
   if (!stairs) {
     bool on_ramp = false;
     for (const eval::TerrainGroup& g : r.groups) {
@@ -317,7 +311,8 @@ WalksCheck check_terrain(const gait::ControllerSet& set, const rig::Segments& bo
       wo.step_length = step;
       gait::Walker walker(set, wo, g.terrain);
       const eval::Motion motion = eval::record(walker, g.stairs ? 24.0 : 16.0, 120.0);
-      missed = missed_terrain_bounds(eval::evaluate_terrain(motion, g.terrain), g.stairs, step);
+      missed = missed_terrain_bounds(eval::evaluate_terrain(motion, g.terrain), motion.fps,
+                                     g.stairs, step);
     } catch (const std::exception& e) {
       missed = {e.what()};
     }

@@ -73,6 +73,13 @@ constexpr double kLiftSpeed = 3.0;
 // Longest step, in leg lengths: as far as these legs reach. (The shortest is the controller
 // set's: ControllerSet::shortest_step.)
 constexpr double kLongestStep = 1.2;
+// Tallest stair, up or down, in leg lengths (thigh, shank and ankle height): the rise the walker
+// takes one stair a step. Measured with the default set over rises of 0.05-0.25 m, treads of
+// 0.20-0.40 m and statures of 0.6-2.0 m (docs/terrain.md, "Which stairs"): from 0.42-0.50 leg
+// lengths up, descents stall on every tread (0.16 m at 0.60 m stature, 0.19 at 0.80, 0.22 at
+// 1.00); climbs reach the top on most treads to 0.40 and beyond. Below it, the stalls left depend
+// on the tread, not on the rise, and are the walker's (a stalled walk is reported, not refused).
+constexpr double kTallestStair = 0.40;
 constexpr double kShortestTimeStep = 1e-5;
 // How far an edge may reach up to a landing foot's sole (m): a heel reaching over a tread shorter
 // than the foot lies on its nosing.
@@ -196,6 +203,24 @@ double Walker::max_step_length(const rig::Segments& s) {
   return kLongestStep * s.leg_length();
 }
 
+double Walker::tallest_stair(const rig::Segments& s) {
+  return kTallestStair * s.leg_length();
+}
+
+std::optional<Walker::StairTooTall> Walker::stair_too_tall(const terrain::Terrain& terrain,
+                                                           const rig::Segments& s, double from_x) {
+  const double tallest = tallest_stair(s);
+  const std::vector<terrain::Terrain::Run>& runs = terrain.runs();
+  for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
+    // The risers between two runs make one stair however many segments they are.
+    const double foot = runs[k].end;
+    if (foot < from_x) continue;
+    const double rise = terrain.height(runs[k + 1].begin) - terrain.height(foot);
+    if (std::abs(rise) > tallest) return StairTooTall{foot, rise, tallest};
+  }
+  return std::nullopt;
+}
+
 Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
                const terrain::Terrain& terrain)
     : Walker(controllers, options, terrain, nullptr) {}
@@ -255,6 +280,16 @@ Walker::Walker(const ControllerSet& controllers, const WalkerOptions& options,
   const LegPoints straight = rig::forward_kinematics(segments_, {0.0, 0.0}, 0.0, LegAngles{});
   reach_ = std::hypot(straight.heel.x - straight.hip.x, straight.heel.y - straight.hip.y);
   start(options.start);
+  // The ground ahead of the feet must be ground these legs take: a frozen walk is no walk.
+  const double behind = std::min(points(rig::Side::Left).heel.x, points(rig::Side::Right).heel.x);
+  if (const std::optional<StairTooTall> stair = stair_too_tall(terrain, segments_, behind)) {
+    throw std::invalid_argument(
+        "the ground has a stair " + number_text(std::abs(stair->rise), 3) + " m " +
+        (stair->rise > 0.0 ? "up" : "down") + " at x = " + number_text(stair->x, 3) +
+        " m, taller than these legs take one stair a step: " + number_text(stair->tallest, 3) +
+        " m (" + number_text(kTallestStair) + " leg lengths of " +
+        number_text(segments_.leg_length(), 3) + " m)");
+  }
 }
 
 double Walker::min_step_length() const noexcept {
