@@ -13,5 +13,6 @@ void add_gait_command(CLI::App& app);
 void add_crowd_command(CLI::App& app);
 // `fuzzygait-bench terrain`: a walker's time step on ramps and stairs against level ground.
 void add_terrain_command(CLI::App& app);
+void add_body_command(CLI::App& app);
 
 }  // namespace fuzzygait::bench

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   fuzzygait::bench::add_gait_command(app);
   fuzzygait::bench::add_crowd_command(app);
   fuzzygait::bench::add_terrain_command(app);
+  fuzzygait::bench::add_body_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

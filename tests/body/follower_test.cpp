@@ -456,8 +456,8 @@ TEST(UpperBody, ArmsSwingAsTheCmuWalkersDo) {
 TEST(UpperBody, PelvisTurnsAsSchwartzsFreeWalkers) {
   const UpperBodyCycles walk = upper_body_cycles(1.3);
   std::ifstream file(std::string(FUZZYGAIT_SOURCE_DIR) +
-                     "/data/normative/schwartz2008_3d_free.csv");
-  ASSERT_TRUE(file) << "data/normative/schwartz2008_3d_free.csv";
+                     "/data/normative3d/schwartz2008_3d_free.csv");
+  ASSERT_TRUE(file) << "data/normative3d/schwartz2008_3d_free.csv";
   std::string line;
   std::getline(file, line);  // the header: percent, pelvis_obliquity mean, sd, pelvis_rotation ...
   std::vector<double> mean, sd;
@@ -497,7 +497,8 @@ TEST(UpperBody, PelvisTurnsAsSchwartzsFreeWalkers) {
   RecordProperty("pelvis_rotation_rmse_deg", std::to_string(rmse));
   RecordProperty("pelvis_rotation_r", std::to_string(r));
   std::string curve;
-  for (std::size_t k = 0; k < 51; k += 5) curve += std::to_string(walk.pelvis[k]).substr(0, 5) + " ";
+  for (std::size_t k = 0; k < 51; k += 5)
+    curve += std::to_string(walk.pelvis[k]).substr(0, 5) + " ";
   RecordProperty("pelvis_rotation_every_10_percent", curve);
 }
 

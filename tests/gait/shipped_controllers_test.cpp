@@ -90,6 +90,11 @@ TEST(ShippedControllers, FuzzyliteReadsEveryFileAndGivesFuzzygaitsOutputs) {
       name(c);
     if (set.stride) name(*set.stride);
     in_sets += set.controller_count() + (set.stride ? 1 : 0);
+    for (const auto& c : set.upper_body) {
+      if (!c) continue;
+      name(*c);
+      ++in_sets;
+    }
   }
   const auto others =
       static_cast<std::size_t>(std::count_if(files.begin(), files.end(), [](const fs::path& f) {
