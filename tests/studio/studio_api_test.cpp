@@ -364,6 +364,9 @@ TEST(StudioApi, ATermTakesAnotherShapeFromItsFeetAndPeakOrFromParameters) {
             "fast path");
   EXPECT_FALSE(gaussian.at("controller").at("fast_path"));
   EXPECT_NE(gaussian.at("walk").at("curves").at("knee"), walk_before.at("curves").at("knee"));
+  // Which rules fire is told for the reshaped controller as for any other.
+  const json fired = studio.fired({{"time", 2.0}});
+  EXPECT_EQ(fired.at("controllers").at("swing_knee").at("rules").size(), 12u);
 
   const json trapezoid = shape("end", "Trapezoid");
   const std::vector<double> plateau =
