@@ -62,11 +62,12 @@ class MembershipPlot {
   // `onDrag(index, value, phase, event)` is called as a knot is dragged (phase 'move', then 'end');
   // `onType(index, value, refused)` when a knot's value is typed into its field (`refused(text)`
   // shows the server's reason beside the fields).
-  constructor(parent, controllerId, input, onDrag, onType) {
+  constructor(parent, controllerId, input, onDrag, onType, terms = null) {
     this.controllerId = controllerId;
     this.input = input;
     this.onDrag = onDrag;
     this.onType = onType;
+    this.terms = terms; // {onTerm(change, refused), shapes()} for the term tools, or null
     this.figure = document.createElement('figure');
     this.figure.className = 'mf';
     parent.append(this.figure);
@@ -80,6 +81,7 @@ class MembershipPlot {
     this.fields = document.createElement('div');
     this.fields.className = 'knot-fields';
     this.figure.append(this.fields);
+    if (this.terms) this.tools = termTools(this.figure, this);
     // The x span is fixed while the card lives, so a drag maps the pointer steadily.
     const [low, high] = input.domain;
     const pad = (high - low) * 0.06;
@@ -156,6 +158,7 @@ class MembershipPlot {
     }
     this.drawHandles();
     this.drawFields();
+    if (this.tools) this.tools.show(input);
   }
 
   // A field a knot: its exact value typed, taken on Enter or leaving the field. The server keeps
@@ -370,6 +373,98 @@ function rulesHtml(controller) {
   return grid;
 }
 
+// Under an input's plot: a term picked, its shape and parameters shown; Shape gives it the shape
+// chosen (from its feet and peak, or the parameters as typed when they were changed), Remove takes
+// it away (the server refuses while rules read it, naming them), Add puts a new term of the shape
+// chosen in the middle of the input's span. Each is one step of the history; a refusal is shown
+// under the tools.
+function termTools(figure, plot) {
+  const box = document.createElement('div');
+  box.className = 'term-tools';
+  const id = `${plot.controllerId}/${plot.input.name}`;
+  box.dataset.controller = plot.controllerId;
+  box.dataset.variable = plot.input.name;
+  box.innerHTML = `<select class="term-pick" aria-label="term of ${escapeHtml(id)}"></select>
+    <select class="term-shape" aria-label="shape"></select>
+    <input class="term-parameters" type="text" spellcheck="false" aria-label="parameters"
+      title="the term's parameters, separated by spaces">
+    <button type="button" class="term-reshape" title="give the term this shape">Shape</button>
+    <button type="button" class="term-remove" title="remove the term (not while rules read it)">Remove</button>
+    <input class="term-new-name" type="text" spellcheck="false" placeholder="new term" aria-label="new term's name">
+    <button type="button" class="term-add" title="add a term of the shape chosen">Add</button>
+    <p class="term-error" role="alert"></p>`;
+  figure.append(box);
+  const pick = box.querySelector('.term-pick');
+  const shape = box.querySelector('.term-shape');
+  const parameters = box.querySelector('.term-parameters');
+  const error = box.querySelector('.term-error');
+  const newName = box.querySelector('.term-new-name');
+  for (const field of box.querySelectorAll('input, select')) {
+    field.addEventListener('keydown', (event) => event.stopPropagation());
+  }
+  let typed = false; // the parameters field changed since the term was shown
+  const picked = () => plot.input.terms.find((t) => t.name === pick.value);
+  const showTerm = () => {
+    const term = picked();
+    if (!term) return;
+    const shapes = plot.terms.shapes();
+    const options = shapes.includes(term.shape) ? shapes : [term.shape, ...shapes];
+    if (shape.dataset.options !== options.join(' ')) {
+      shape.innerHTML = options.map((s) => `<option>${escapeHtml(s)}</option>`).join('');
+      shape.dataset.options = options.join(' ');
+    }
+    shape.value = term.shape;
+    if (document.activeElement !== parameters) parameters.value = term.parameters.map((p) => Number(p.toPrecision(12))).join(' ');
+    typed = false;
+  };
+  const send = (change) => {
+    error.textContent = '';
+    plot.terms.onTerm(change, (text) => {
+      error.textContent = text;
+    });
+  };
+  pick.addEventListener('change', showTerm);
+  parameters.addEventListener('input', () => {
+    typed = true;
+  });
+  box.querySelector('.term-reshape').addEventListener('click', () => {
+    const change = { action: 'shape', term: pick.value, shape: shape.value };
+    if (typed) {
+      const values = parameters.value.trim().split(/\s+/).map(Number);
+      if (values.some((v) => !Number.isFinite(v))) {
+        error.textContent = `"${parameters.value}" is not a list of numbers`;
+        return;
+      }
+      change.parameters = values;
+    }
+    send(change);
+  });
+  box.querySelector('.term-remove').addEventListener('click', () => send({ action: 'remove', term: pick.value }));
+  box.querySelector('.term-add').addEventListener('click', () => {
+    const name = newName.value.trim();
+    if (!name) {
+      error.textContent = 'type the new term\'s name first';
+      return;
+    }
+    send({ action: 'add', term: name, shape: shape.value });
+  });
+  return {
+    show: (input) => {
+      const names = input.terms.map((t) => t.name);
+      if (pick.dataset.names !== names.join(' ')) {
+        const was = pick.value;
+        pick.innerHTML = names.map((n) => `<option value="${escapeHtml(n)}">${escapeHtml(readable(n))}</option>`).join('');
+        pick.dataset.names = names.join(' ');
+        // A term just added is the one shown; otherwise the one picked before, if still there.
+        const added = names.find((n) => n === newName.value.trim());
+        pick.value = added || (names.includes(was) ? was : names[0]);
+        if (added) newName.value = '';
+      }
+      showTerm();
+    },
+  };
+}
+
 // The rules as text to edit, one a line as FLL writes them. Apply sends them to the server, which
 // reads them with the library's own rule parser: a rule it cannot read comes back as a refusal
 // naming the rule's number and the word, shown under the text, which stays as typed.
@@ -457,7 +552,11 @@ class ControllerCard {
     this.plots = controller.inputs.map((input) => new MembershipPlot(
       this.element.querySelector('.inputs'), controller.id, structuredClone(input),
       (index, value, phase, event) => handlers.onKnot(controller.id, input.name, index, value, phase, event),
-      (index, value, refused) => handlers.onKnotTyped(controller.id, input.name, index, value, refused)));
+      (index, value, refused) => handlers.onKnotTyped(controller.id, input.name, index, value, refused),
+      handlers.onTerm ? {
+        onTerm: (change, refused) => handlers.onTerm(controller.id, input.name, change, refused),
+        shapes: () => (handlers.termShapes ? handlers.termShapes() : ['Triangle']),
+      } : null));
     this.rules = ruleEditor(this.element.querySelector('.rules > div'), controller,
       (id, rules, refused) => handlers.onRules(id, rules, refused));
     this.buildWords(controller, null);

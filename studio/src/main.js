@@ -118,8 +118,9 @@ async function next() {
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 
 // Calls `call` (a request) until the server answers it: a refusal is an answer (it throws, as
-// always), a failure to reach the server is not: the page shows that the server is away and
-// tries again, 0.25 s later at first, then every 2 s. `retried` says whether it was away.
+// always), a failure to reach the server is not, nor a 503 (the server serving as many
+// connections as it can refused the request unread, so nothing was done): the page shows that the server is away and tries again, 0.25 s later
+// at first, then every 2 s. `retried` says whether it was away.
 async function untilAnswered(call) {
   for (let attempt = 0; ; attempt++) {
     try {
@@ -127,7 +128,7 @@ async function untilAnswered(call) {
       if (attempt > 0) back();
       return { result, retried: attempt > 0 };
     } catch (error) {
-      if (error instanceof api.RequestError) {
+      if (error instanceof api.RequestError && error.status !== 503) {
         if (attempt > 0) back();
         error.retried = attempt > 0;
         throw error;
@@ -322,10 +323,48 @@ function onKnotTyped(controller, variable, knot, value, refused) {
     });
 }
 
+// What keeps rules from being sent: more of them, a longer one or a larger request than the server
+// reads (state's rule_limits: Limits::kMostRules, kLongestRule, kLargestRulesBody), said as the
+// server would say it, or '' when they may go.
+function rulesPastLimits(controller, rules) {
+  const limits = studio.state && studio.state.rule_limits;
+  if (!limits) return '';
+  const bytes = (text) => new TextEncoder().encode(text).length;
+  if (rules.length > limits.rules) {
+    return `${rules.length} rules: a controller takes at most ${limits.rules}; nothing was sent`;
+  }
+  const long = rules.findIndex((rule) => bytes(rule) > limits.rule_bytes);
+  if (long >= 0) {
+    return `rule ${long + 1} is longer than ${limits.rule_bytes} bytes; nothing was sent`;
+  }
+  const size = bytes(JSON.stringify({ controller, rules }));
+  if (size > limits.body_bytes) {
+    return `the rules are ${size} bytes as sent, more than the server reads (${limits.body_bytes}); nothing was sent`;
+  }
+  return '';
+}
+
 // Rules typed in a controller's card: one step of the history; a refusal (a word the parser
 // does not know) is shown under the text through `refused`, which keeps the text as typed.
 function onRules(controller, rules, refused) {
+  const tooMuch = rulesPastLimits(controller, rules);
+  if (tooMuch) {
+    refused(tooMuch);
+    showMessage(tooMuch, 'error');
+    return;
+  }
   request('/api/rules', { controller, rules }, applyEdit, performance.now(), undefined, (error) => {
+    refused(error.message);
+    showError(error);
+    return true;
+  });
+}
+
+// A term added, removed or reshaped from an input's term tools (POST /api/term): one step of the
+// history; a refusal (a rule reads the term, a shape the input cannot hold) is shown under the
+// tools through `refused`.
+function onTerm(controller, variable, change, refused) {
+  request('/api/term', { controller, variable, ...change }, applyEdit, performance.now(), undefined, (error) => {
     refused(error.message);
     showError(error);
     return true;
@@ -556,22 +595,31 @@ function frame() {
 // operators (a second evaluator in the page could drift from the engine's). One frame's answer is
 // about 2 KB; the page asks only while a controller's rules are open, one request at a time, for
 // the frame shown when the last answer came (at most one a frame while playing).
-const fired = { frame: -1, walk: null, out: false, shown: null };
+// A refusal (4xx) is the server's answer for these inputs, the frame and the walk: the page asks
+// again only when one of them changes (`refused`), not every frame; `asked` counts the requests.
+const fired = { frame: -1, walk: null, out: false, shown: null, refused: null, asked: 0 };
 studio.fired = fired;
 function askFired(t) {
   if (fired.out || busy || !document.querySelector('.controller details.rules[open]')) return;
   const index = Math.round(t * 30);
   if (index === fired.frame && fired.walk === studio.walk) return;
+  if (fired.refused && fired.refused.frame === index && fired.refused.walk === studio.walk) return;
   fired.out = true;
+  fired.asked++;
   const walk = studio.walk;
   api.post('/api/fired', { time: index / 30 }).then((answer) => {
     fired.frame = index;
     fired.walk = walk;
     fired.shown = answer;
+    fired.refused = null;
     if (walk === studio.walk) panel.showFired(answer);
-  }).catch(() => {
-    // The server away or busy with another set: the next frame asks again.
+  }).catch((error) => {
     fired.frame = -1;
+    if (error instanceof api.RequestError && error.status >= 400 && error.status < 500) {
+      fired.refused = { frame: index, walk };
+      if (walk === studio.walk) panel.showFired(null);
+    }
+    // Otherwise the server away or failing: the next frame asks again.
   }).finally(() => {
     fired.out = false;
   });
@@ -625,7 +673,8 @@ async function start() {
   side = new SideView($('#side-canvas'));
   curves = new Curves($('#curves'));
   panel = new ControllerPanel($('#controller-list'), {
-    onKnot, onKnotTyped, onWord, onRules, onClamped: (text) => showMessage(text, 'error'),
+    onKnot, onKnotTyped, onWord, onRules, onTerm, termShapes: () => studio.state.term_shapes || ['Triangle'],
+    onClamped: (text) => showMessage(text, 'error'),
   });
   wireToolbar();
   wirePlayback();

@@ -407,6 +407,138 @@ try {
     await page.locator('.controller[data-controller="swing_knee"] details.rules > summary').click();
   }
 
+  // The swing knee's rules opened or closed, whatever they were (an undo draws the cards anew).
+  const openRules = (open) => page.evaluate((o) => {
+    document.querySelector('.controller[data-controller="swing_knee"] details.rules').open = o;
+  }, open);
+  const rulesWereOpen = await page.evaluate(() =>
+    document.querySelector('.controller[data-controller="swing_knee"] details.rules').open);
+
+  // ---- which rules fire: a refusal (4xx) is not asked again every frame, only for new inputs ----
+  {
+    await openRules(true);
+    await page.route('**/api/fired', (route) => route.fulfill({
+      status: 422, contentType: 'application/json',
+      body: JSON.stringify({ error: 'refused for the test', field: 'time', status: 422 }),
+    }));
+    expectRefusal = true;
+    await studio(() => window.studio.seek(1.0));
+    await page.waitForFunction(() => window.studio.fired.refused && window.studio.fired.refused.frame === 30,
+      null, { timeout: 10000 });
+    const askedBefore = await studio(() => window.studio.fired.asked);
+    await page.waitForTimeout(1500);
+    const askedHeld = await studio(() => window.studio.fired.asked);
+    check(askedHeld === askedBefore, `a refused frame is not asked again in 1.5 s (${askedHeld - askedBefore} more)`);
+    await studio(() => window.studio.seek(1.5));
+    await page.waitForTimeout(500);
+    const askedMoved = await studio(() => window.studio.fired.asked);
+    check(askedMoved === askedHeld + 1, `another frame is asked again (${askedMoved - askedHeld})`);
+    await page.unroute('**/api/fired');
+    expectRefusal = false;
+    await studio(() => window.studio.seek(1.0));
+    await page.waitForFunction(() => window.studio.fired.frame === 30, null, { timeout: 10000 });
+    check(true, 'answered again, the page shows the rules firing');
+    await openRules(false);
+  }
+
+  // ---- rules past the server's limits are refused in the page, before sending ----
+  {
+    const card = page.locator('.controller[data-controller="swing_knee"]');
+    await openRules(true);
+    const rulesText = card.locator('textarea.rule-edit');
+    const original = await rulesText.inputValue();
+    let sent = 0;
+    const count = (request) => {
+      if (request.url().endsWith('/api/rules')) sent++;
+    };
+    page.on('request', count);
+    const many = Array.from({ length: 401 }, () => 'if delta is center and knee is bent then velocity is extend');
+    await rulesText.fill(many.join('\n'));
+    await card.locator('button.apply-rules').click();
+    await idle();
+    const said = await card.locator('.rule-error').textContent();
+    check(sent === 0 && said.includes('401 rules') && said.includes('at most 400'),
+      `401 rules are refused in the page, nothing sent ("${said}")`);
+    const long = 'if delta is center and knee is ' + 'very '.repeat(200) + 'bent then velocity is extend';
+    await rulesText.fill([long].join('\n'));
+    await card.locator('button.apply-rules').click();
+    await idle();
+    const saidLong = await card.locator('.rule-error').textContent();
+    check(sent === 0 && saidLong.includes('rule 1 is longer than 1000 bytes'), `a rule over 1000 bytes is refused in the page ("${saidLong}")`);
+    page.off('request', count);
+    await card.locator('button.revert-rules').click();
+    check(await rulesText.inputValue() === original, 'revert brings the rules back');
+    await openRules(false);
+  }
+
+  // ---- terms: a shape changed, a term added and removed, a removal refused; each undone ----
+  {
+    const tools = (variable) => page.locator(`.term-tools[data-controller="swing_knee"][data-variable="${variable}"]`);
+    const swingKnee = () => studio(() => window.studio.state.set.controllers.find((c) => c.id === 'swing_knee'));
+    const undoBefore = (await studio(() => window.studio.state.history)).undo;
+    const errorsBefore = await studio(() => window.studio.errors.length);
+    const curveBefore = await kneeCurve();
+    const delta = tools('delta');
+    await delta.scrollIntoViewIfNeeded();
+    await delta.locator('.term-pick').selectOption('center');
+    await delta.locator('.term-shape').selectOption('Gaussian');
+    await delta.locator('.term-reshape').click();
+    await idle();
+    let knee = await swingKnee();
+    let history = await studio(() => window.studio.state.history);
+    const center = knee.inputs[0].terms.find((t) => t.name === 'center');
+    check(center.shape === 'Gaussian' && !knee.fast_path && history.undo === undoBefore + 1 &&
+      history.undo_label.startsWith("swing_knee: delta term 'center' Triangle -> Gaussian"),
+    `Shape makes the term a Gaussian, one step of the history ("${history.undo_label}")`);
+    check(JSON.stringify(await kneeCurve()) !== JSON.stringify(curveBefore), 'the reshaped term changes the knee curve');
+    check(await delta.locator('.term-parameters').inputValue() === center.parameters.join(' '),
+      `the tools show the new parameters (${await delta.locator('.term-parameters').inputValue()})`);
+    await shot('term_shape.png');
+    // Parameters typed: taken exactly.
+    await delta.locator('.term-parameters').fill('0.4 0.3');
+    await delta.locator('.term-reshape').click();
+    await idle();
+    knee = await swingKnee();
+    check(JSON.stringify(knee.inputs[0].terms.find((t) => t.name === 'center').parameters) === '[0.4,0.3]',
+      'parameters typed are taken as typed');
+
+    const kneeTools = tools('knee');
+    await kneeTools.locator('.term-new-name').fill('far');
+    await kneeTools.locator('.term-shape').selectOption('Gaussian');
+    await kneeTools.locator('.term-add').click();
+    await idle();
+    knee = await swingKnee();
+    check(knee.inputs[1].terms.map((t) => t.name).join(' ') === 'straight bent deep far' &&
+      await kneeTools.locator('.term-pick').inputValue() === 'far',
+    'Add puts a new term on the knee input, picked in the tools');
+    expectRefusal = true;
+    await kneeTools.locator('.term-pick').selectOption('bent');
+    await kneeTools.locator('.term-remove').click();
+    await idle();
+    expectRefusal = false;
+    const refusal = await kneeTools.locator('.term-error').textContent();
+    check(refusal.includes('rules 2, 5, 8, 11'), `removing a term rules read is refused naming them ("${refusal}")`);
+    const errors = await studio(() => window.studio.errors.slice());
+    check(errors.length === errorsBefore + 1 && errors[errorsBefore].includes('rules 2, 5, 8, 11'), 'the refusal was shown once');
+    await kneeTools.locator('.term-pick').selectOption('far');
+    await kneeTools.locator('.term-remove').click();
+    await idle();
+    knee = await swingKnee();
+    history = await studio(() => window.studio.state.history);
+    check(knee.inputs[1].terms.length === 3 && history.undo === undoBefore + 4 && history.undo_label.includes("term 'far' removed"),
+      `Remove takes the unread term away, one step ("${history.undo_label}")`);
+    for (let i = 0; i < 4; i++) {
+      await page.click('#undo');
+      await idle();
+    }
+    knee = await swingKnee();
+    check(knee.fast_path && knee.inputs[0].terms.every((t) => t.shape === 'Triangle') &&
+      JSON.stringify(await kneeCurve()) === JSON.stringify(curveBefore),
+    'undone, the partition and the knee curve are as they were');
+    await page.evaluate((n) => window.studio.errors.splice(n, 1), errorsBefore);
+    await openRules(rulesWereOpen);
+  }
+
   // ---- the history as a list: back two steps with a click, and forward again ----
   {
     const before = await studio(() => window.studio.state.history);

@@ -6,6 +6,8 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +15,7 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "fuzzygait/eval/evaluation.hpp"
@@ -250,6 +253,194 @@ TEST(StudioApi, RulesAreEditedAddedAndDeletedAsStepsOfTheHistory) {
   EXPECT_EQ(timeless(undone.at("walk")), timeless(before));
   const json redone = studio.redo();
   EXPECT_EQ(timeless(redone.at("walk")), timeless(edited.at("walk")));
+}
+
+const json& input_of(const json& controller, const std::string& name) {
+  for (const json& input : controller.at("inputs")) {
+    if (input.at("name") == name) return input;
+  }
+  throw std::runtime_error("no input " + name);
+}
+
+std::vector<std::string> term_names(const json& input) {
+  std::vector<std::string> names;
+  for (const json& term : input.at("terms"))
+    names.push_back(term.at("name"));
+  return names;
+}
+
+const json& term_of(const json& input, const std::string& name) {
+  for (const json& term : input.at("terms")) {
+    if (term.at("name") == name) return term;
+  }
+  throw std::runtime_error("no term " + name);
+}
+
+TEST(StudioApi, ATermIsAddedReadByARuleAndRemovedEachAStepOfTheHistory) {
+  Studio studio(quick("terms-add"));
+  const json walk_before = timeless(studio.walk().at("walk"));
+  EXPECT_EQ(studio.state().at("term_shapes"), (json{"Triangle", "Trapezoid", "Ramp", "Gaussian"}));
+  EXPECT_TRUE(controller(studio.state(), "swing_knee").at("fast_path"));
+
+  // Added: no rule reads it yet, so the walk is the same, but the controller is no partition.
+  const json added = studio.edit_term({{"controller", "swing_knee"},
+                                       {"variable", "knee"},
+                                       {"term", "far"},
+                                       {"action", "add"},
+                                       {"shape", "Gaussian"},
+                                       {"parameters", {70, 8}}});
+  const json knee = input_of(added.at("controller"), "knee");
+  EXPECT_EQ(term_names(knee), (std::vector<std::string>{"straight", "bent", "deep", "far"}));
+  EXPECT_EQ(term_of(knee, "far").at("shape"), "Gaussian");
+  EXPECT_EQ(term_of(knee, "far").at("samples").size(), 101u);
+  EXPECT_FALSE(added.at("controller").at("fast_path"));
+  EXPECT_EQ(added.at("history").at("undo"), 1);
+  EXPECT_EQ(added.at("history").at("undo_label"),
+            "swing_knee: knee term 'far' added (Gaussian 70 8), off the walker's fast path");
+
+  // A rule reads it: the walk changes; then it cannot be removed, the refusal naming the rule.
+  std::vector<std::string> rules = rules_of(added.at("controller"));
+  rules.push_back("if delta is center and knee is far then velocity is extend_fast");
+  const json ruled = studio.edit_rules({{"controller", "swing_knee"}, {"rules", rules}});
+  EXPECT_EQ(ruled.at("history").at("undo"), 2);
+  EXPECT_NE(ruled.at("walk").at("curves").at("knee"), walk_before.at("curves").at("knee"));
+  const json remove = {
+      {"controller", "swing_knee"}, {"variable", "knee"}, {"term", "far"}, {"action", "remove"}};
+  try {
+    studio.edit_term(remove);
+    ADD_FAILURE() << "a term a rule reads was removed";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.status(), 422);
+    EXPECT_EQ(e.field(), "term");
+    EXPECT_THAT(e.what(), HasSubstr("rule 13"));
+  }
+  try {
+    studio.edit_term({{"controller", "swing_knee"},
+                      {"variable", "knee"},
+                      {"term", "bent"},
+                      {"action", "remove"}});
+    ADD_FAILURE() << "a term rules read was removed";
+  } catch (const RequestError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("rules 2, 5, 8, 11"));
+  }
+  EXPECT_EQ(studio.state().at("history").at("undo"), 2);
+
+  // Without the rule it goes, one step; undo brings it back, undo again the set as it was.
+  studio.undo();
+  const json removed = studio.edit_term(remove);
+  EXPECT_EQ(term_names(input_of(removed.at("controller"), "knee")),
+            (std::vector<std::string>{"straight", "bent", "deep"}));
+  EXPECT_EQ(removed.at("history").at("undo_label"),
+            "swing_knee: knee term 'far' removed, on the walker's fast path");
+  EXPECT_TRUE(removed.at("controller").at("fast_path"));
+  EXPECT_EQ(timeless(removed.at("walk")), walk_before);
+  const json undone = studio.undo();
+  EXPECT_EQ(term_names(input_of(controller(undone, "swing_knee"), "knee")).size(), 4u);
+  const json first = studio.undo();
+  EXPECT_EQ(term_names(input_of(controller(first, "swing_knee"), "knee")).size(), 3u);
+  EXPECT_EQ(timeless(first.at("walk")), walk_before);
+  const json redone = studio.redo();
+  EXPECT_EQ(term_names(input_of(controller(redone, "swing_knee"), "knee")).size(), 4u);
+}
+
+TEST(StudioApi, ATermTakesAnotherShapeFromItsFeetAndPeakOrFromParameters) {
+  Studio studio(quick("terms-shape"));
+  const json walk_before = timeless(studio.walk().at("walk"));
+  const auto shape = [&](const std::string& term, const std::string& kind) {
+    return studio.edit_term({{"controller", "swing_knee"},
+                             {"variable", "delta"},
+                             {"term", term},
+                             {"action", "shape"},
+                             {"shape", kind}});
+  };
+  // center: Triangle -1 0.513 1.29, its feet and peak kept by each shape.
+  const json gaussian = shape("center", "Gaussian");
+  const json center = term_of(input_of(gaussian.at("controller"), "delta"), "center");
+  EXPECT_EQ(center.at("shape"), "Gaussian");
+  EXPECT_EQ(center.at("parameters").at(0), 0.513);
+  EXPECT_NEAR(center.at("parameters").at(1).get<double>(), 2.29 / 4, 1e-12);
+  EXPECT_EQ(gaussian.at("history").at("undo_label"),
+            "swing_knee: delta term 'center' Triangle -> Gaussian 0.513 0.5725, off the walker's "
+            "fast path");
+  EXPECT_FALSE(gaussian.at("controller").at("fast_path"));
+  EXPECT_NE(gaussian.at("walk").at("curves").at("knee"), walk_before.at("curves").at("knee"));
+  // Which rules fire is told for the reshaped controller as for any other.
+  const json fired = studio.fired({{"time", 2.0}});
+  EXPECT_EQ(fired.at("controllers").at("swing_knee").at("rules").size(), 12u);
+
+  const json trapezoid = shape("end", "Trapezoid");
+  const std::vector<double> plateau =
+      term_of(input_of(trapezoid.at("controller"), "delta"), "end").at("parameters");
+  const std::vector<double> expected = {0.513, 0.9015, 1.395, 1.5};
+  ASSERT_EQ(plateau.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i)
+    EXPECT_NEAR(plateau[i], expected[i], 1e-12) << i;
+  // A ramp rises to a peak in the upper half of the input's span and falls from one in the lower.
+  const json past = shape("past", "Ramp");
+  EXPECT_EQ(term_of(input_of(past.at("controller"), "delta"), "past").at("parameters"),
+            (json{1.29, 1.5}));
+  const json start = shape("start", "Ramp");
+  EXPECT_EQ(term_of(input_of(start.at("controller"), "delta"), "start").at("parameters"),
+            (json{0.513, -1}));
+  // Parameters given are taken as they are.
+  const json exact = studio.edit_term({{"controller", "swing_knee"},
+                                       {"variable", "delta"},
+                                       {"term", "center"},
+                                       {"action", "shape"},
+                                       {"shape", "Gaussian"},
+                                       {"parameters", {0.4, 0.3}}});
+  EXPECT_EQ(term_of(input_of(exact.at("controller"), "delta"), "center").at("parameters"),
+            (json{0.4, 0.3}));
+  EXPECT_EQ(exact.at("history").at("undo_label"),
+            "swing_knee: delta term 'center' Gaussian 0.513 0.5725 -> 0.4 0.3");
+  EXPECT_EQ(exact.at("history").at("undo"), 5);
+
+  // Back through the history to triangles: the partition and its walk exactly as they were.
+  json back;
+  for (int i = 0; i < 5; ++i)
+    back = studio.undo();
+  EXPECT_TRUE(controller(back, "swing_knee").at("fast_path"));
+  EXPECT_EQ(timeless(back.at("walk")), walk_before);
+}
+
+TEST(StudioApi, ATermTheInputCannotHoldIsRefusedNamingWhy) {
+  Studio studio(quick("terms-refused"));
+  const json state = studio.state();
+  const auto refused = [&](json request, const std::string& field, const std::string& why) {
+    request["controller"] = "swing_knee";
+    request["variable"] = "delta";
+    try {
+      studio.edit_term(request);
+      ADD_FAILURE() << "taken: " << request.dump();
+    } catch (const RequestError& e) {
+      EXPECT_EQ(e.status(), 422) << e.what();
+      EXPECT_EQ(e.field(), field) << e.what();
+      EXPECT_THAT(e.what(), HasSubstr(why)) << request.dump();
+    }
+  };
+  refused({{"term", "center"}, {"action", "shape"}, {"shape", "Constant"}}, "shape",
+          "an output's term");
+  refused({{"term", "center"}, {"action", "shape"}, {"shape", "Bell"}}, "shape",
+          "Triangle, Trapezoid, Ramp, Gaussian");
+  refused(
+      {{"term", "center"}, {"action", "shape"}, {"shape", "Triangle"}, {"parameters", {1, 0, 2}}},
+      "parameters", "must be in order");
+  refused(
+      {{"term", "center"}, {"action", "shape"}, {"shape", "Triangle"}, {"parameters", {1, 1, 1}}},
+      "parameters", "feet must be apart");
+  refused({{"term", "center"}, {"action", "shape"}, {"shape", "Gaussian"}, {"parameters", {0, 0}}},
+          "parameters", "standardDeviation must be above 0");
+  refused({{"term", "center"}, {"action", "shape"}, {"shape", "Ramp"}, {"parameters", {1, 1}}},
+          "parameters", "must differ");
+  refused({{"term", "center"}, {"action", "shape"}, {"shape", "Trapezoid"}, {"parameters", {1, 2}}},
+          "parameters", "takes 4 parameters");
+  refused({{"term", "nowhere"}, {"action", "shape"}, {"shape", "Ramp"}}, "term",
+          "its terms: start, center, end, past");
+  refused({{"term", "center"}, {"action", "add"}, {"shape", "Ramp"}}, "term", "already");
+  refused({{"term", "two words"}, {"action", "add"}, {"shape", "Ramp"}}, "term", "a letter then");
+  refused({{"term", "center"}, {"action", "rename"}}, "action", "\"add\", \"remove\" or \"shape\"");
+  EXPECT_EQ(studio.state().at("history").at("undo"), 0);
+  EXPECT_EQ(studio.state().at("set"), state.at("set"));
 }
 
 TEST(StudioApi, ARuleThatDoesNotReadIsRefusedNamingItsLineAndWord) {
@@ -764,6 +955,51 @@ TEST(StudioApi, SaveNeverFollowsALinkOutOfTheWorkspaceNorDeletesOthersFiles) {
   studio.save({{"name", "mine"}});
   EXPECT_EQ(read(options.workspace / "mine" / "notes.fll"), "Engine: notes\n");
   EXPECT_TRUE(fs::is_regular_file(options.workspace / "mine" / "swing_knee.fll"));
+}
+
+// The set's folder swapped for a link to a folder outside while saves run, over and over (the
+// studio checked the folder, then wrote by its path): no save writes there, whatever the timing.
+TEST(StudioApi, SaveFollowsNoLinkSwappedInAfterItsCheck) {
+  namespace fs = std::filesystem;
+  StudioOptions options = quick("save_race");
+  const fs::path outside = scratch("save_race_outside");
+  std::ofstream(outside / "unrelated.fll") << "Engine: precious\n";
+  Studio studio(options);
+  studio.save({{"name", "raced"}});
+  const fs::path folder = options.workspace / "raced";
+  const fs::path parked = options.workspace / "raced_parked";
+  std::atomic<bool> swapping{true};
+  std::thread swapper([&] {
+    std::error_code ignored;
+    while (swapping) {
+      fs::rename(folder, parked, ignored);
+      fs::create_directory_symlink(outside, folder, ignored);
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      fs::remove(folder, ignored);
+      fs::rename(parked, folder, ignored);
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  });
+  int saved = 0;
+  int refused = 0;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (std::chrono::steady_clock::now() < end) {
+    try {
+      studio.save({{"name", "raced"}, {"overwrite", true}});
+      ++saved;
+    } catch (const RequestError&) {
+      ++refused;
+    }
+  }
+  swapping = false;
+  swapper.join();
+  std::vector<std::string> outside_names;
+  for (const fs::directory_entry& e : fs::directory_iterator(outside))
+    outside_names.push_back(e.path().filename().string());
+  std::printf("%d saves while the folder was swapped for a link: %d written, %d refused\n",
+              saved + refused, saved, refused);
+  EXPECT_EQ(outside_names, std::vector<std::string>{"unrelated.fll"});
+  EXPECT_GT(saved + refused, 20);
 }
 
 // The history says whether the set has edits not saved; a save over another set saved under

@@ -86,6 +86,21 @@ class ServedStudio {
   std::thread runner_;
 };
 
+// What the server sends on `fd` until it closes the connection or `timeout` passes.
+std::string read_until_closed(int fd, std::chrono::milliseconds timeout) {
+  std::string response;
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  char buffer[4096];
+  while (std::chrono::steady_clock::now() < end) {
+    pollfd p{fd, POLLIN, 0};
+    if (poll(&p, 1, 100) <= 0) continue;
+    const ssize_t n = recv(fd, buffer, sizeof buffer, 0);
+    if (n <= 0) break;
+    response.append(buffer, static_cast<std::size_t>(n));
+  }
+  return response;
+}
+
 // Sends `bytes` on a new connection and reads until the server closes it or `timeout` passes.
 // `half_close` ends the sending side after the bytes (for bytes that are not a whole request, so
 // that the server sees their end at once; cpp-httplib drops a long answer to a half-closed
@@ -107,15 +122,7 @@ std::string raw_exchange(int port, const std::string& bytes, bool half_close = f
       sent += static_cast<std::size_t>(n);
     }
     if (half_close) shutdown(fd, SHUT_WR);
-    const auto end = std::chrono::steady_clock::now() + timeout;
-    char buffer[4096];
-    while (std::chrono::steady_clock::now() < end) {
-      pollfd p{fd, POLLIN, 0};
-      if (poll(&p, 1, 100) <= 0) continue;
-      const ssize_t n = recv(fd, buffer, sizeof buffer, 0);
-      if (n <= 0) break;
-      response.append(buffer, static_cast<std::size_t>(n));
-    }
+    response = read_until_closed(fd, timeout);
   }
   close(fd);
   return response;
@@ -300,11 +307,16 @@ TEST(StudioServer, RefusesWithAStatusAndJsonNamingTheField) {
       {"a point of the history past its end", json_post("/api/history", port, R"({"to": 99})"), 422,
        "to"},
       {"rules with NaN", json_post("/api/rules", port, R"({"controller": NaN})"), 400, "body"},
-      {"rules over the limit",
+      {"rules over the limit of rules' bodies",
+       json_post("/api/rules", port,
+                 R"({"controller": "swing_knee", "rules": [")" +
+                     std::string(studio::Limits::kLargestRulesBody, 'x') + R"("]})"),
+       413, "body"},
+      {"a rule too long, in a body over 64 KiB",
        json_post(
            "/api/rules", port,
            R"({"controller": "swing_knee", "rules": [")" + std::string(70000, 'x') + R"("]})"),
-       413, "body"},
+       422, "rules"},
   };
   for (const Case& c : cases) {
     const std::string response = raw_exchange(port, c.bytes);
@@ -463,6 +475,34 @@ TEST(StudioServer, RefusesABodyOverTheLimitWhateverItsTransferEncoding) {
   EXPECT_EQ(served.studio().state().at("history").at("undo"), 1);
 }
 
+// A controller's rules at their limits (400 of 1000 characters) are more than the 64 KiB other
+// requests take: /api/rules reads up to Limits::kLargestRulesBody, so the studio answers about
+// the rules themselves; past that it is 413, and other routes keep 64 KiB.
+TEST(StudioServer, ReadsRulesAtTheirLimitsButNoMore) {
+  ServedStudio served("rules_body");
+  const int port = served.port();
+  const auto rules_body = [](std::size_t count, std::size_t length) {
+    json rules = json::array();
+    for (std::size_t i = 0; i < count; ++i)
+      rules.push_back("if phase is " + std::string(length - 12, 'x'));
+    return json{{"controller", "swing_knee"}, {"rules", rules}}.dump();
+  };
+  const std::string largest = rules_body(studio::Limits::kMostRules, studio::Limits::kLongestRule);
+  ASSERT_GT(largest.size(), studio::ServerOptions{}.max_body);
+  const std::string answered = raw_exchange(port, json_post("/api/rules", port, largest));
+  EXPECT_EQ(status_of(answered), 422) << answered.substr(0, 300);
+  EXPECT_EQ(body_of(answered).value("field", "?"), "rules");
+  EXPECT_THAT(body_of(answered).value("error", ""), HasSubstr("rule 1"));
+
+  const std::string too_large(studio::Limits::kLargestRulesBody + 1, ' ');
+  const std::string refused = raw_exchange(port, json_post("/api/rules", port, too_large));
+  EXPECT_EQ(status_of(refused), 413) << refused.substr(0, 300);
+  const std::string edit = raw_exchange(port, json_post("/api/edit", port, largest));
+  EXPECT_EQ(status_of(edit), 413) << edit.substr(0, 300);
+  EXPECT_EQ(served.studio().state().at("rule_limits").at("body_bytes"),
+            studio::Limits::kLargestRulesBody);
+}
+
 // Listening on every address (--host 0.0.0.0) the Host and Origin checks still hold: a page of
 // another site whose name resolves to this machine (DNS rebinding) is refused and saves nothing.
 TEST(StudioServer, RefusesAnotherHostNameOnAnyAddressItListensOn) {
@@ -595,6 +635,120 @@ TEST(StudioServer, ListensOnLoopbackByDefault) {
   } catch (const std::runtime_error& e) {
     EXPECT_THAT(e.what(), HasSubstr("127.0.0.1:" + std::to_string(served.port())));
   }
+}
+
+// A header line with no end (cpp-httplib 0.11 keeps reading it whole, growing by its length) is
+// refused with 431 after its first 8 KiB, and the rest is not kept.
+TEST(StudioServer, RefusesAHeaderLineLongerThan8KiBWithoutKeepingIt) {
+  ServedStudio served("long_header");
+  const int port = served.port();
+  const int fd = open_connection(
+      port, "GET /api/state HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\nX-Long: ");
+  ASSERT_GE(fd, 0);
+  const double before = resident_mb();
+  // 64 MB of one header line, sent until the server stops reading it.
+  std::atomic<std::size_t> sent{0};
+  std::thread sender([&] {
+    const std::string block(64 * 1024, 'a');
+    while (sent < 64u * 1024 * 1024) {
+      pollfd p{fd, POLLOUT, 0};
+      if (poll(&p, 1, 2000) <= 0) break;
+      const ssize_t n = send(fd, block.data(), block.size(), MSG_NOSIGNAL);
+      if (n <= 0) break;
+      sent += static_cast<std::size_t>(n);
+    }
+  });
+  const std::string response = read_until_closed(fd, std::chrono::seconds(20));
+  shutdown(fd, SHUT_RDWR);
+  sender.join();
+  close(fd);
+  const double growth = resident_mb() - before;
+  std::printf("a header line of %.1f MB sent: status %d, the process grew %.1f MB\n",
+              static_cast<double>(sent.load()) / 1e6, status_of(response), growth);
+  EXPECT_EQ(status_of(response), 431) << response.substr(0, 300);
+  EXPECT_EQ(body_of(response).value("field", "?"), "header");
+  EXPECT_FALSE(header_of(response, "X-Frame-Options").empty());
+  EXPECT_LT(sent.load(), 64u * 1024 * 1024);
+  EXPECT_LT(growth, 16.0);
+  // A request line over 8 KiB is 414; the server answers the next request as before.
+  const std::string long_path = "/" + std::string(9000, 'p');
+  EXPECT_EQ(status_of(raw_exchange(port, request("GET", long_path, port))), 414);
+  EXPECT_EQ(status_of(raw_exchange(port, request("GET", "/api/state", port))), 200);
+}
+
+// The kernel queues connections the server has not accepted yet: more than cpp-httplib's 5 (ss
+// shows a listening socket's queue as its Send-Q).
+TEST(StudioServer, ListensWithADeepQueue) {
+  ServedStudio served("backlog");
+  FILE* ss =
+      popen(("ss -ltnH 'sport = :" + std::to_string(served.port()) + "' 2>/dev/null").c_str(), "r");
+  ASSERT_NE(ss, nullptr);
+  char line[512] = {};
+  const bool read = std::fgets(line, sizeof line, ss) != nullptr;
+  pclose(ss);
+  if (!read) GTEST_SKIP() << "ss (iproute2) is not installed or lists no socket";
+  char state[64] = {};
+  unsigned long queued = 0;
+  unsigned long backlog = 0;
+  ASSERT_EQ(std::sscanf(line, "%63s %lu %lu", state, &queued, &backlog), 3) << line;
+  std::printf("listen queue: %lu\n", backlog);
+  EXPECT_EQ(backlog, static_cast<unsigned long>(studio::ServerOptions{}.listen_backlog));
+  EXPECT_GE(backlog, 128u);
+}
+
+// More connections than the server has threads, each sending a request's head a byte at a time
+// (with cpp-httplib's own pool each held a thread for good): a real request is answered within
+// seconds, 200 or at once 503 with Retry-After, and one retried after a 503 gets its 200.
+TEST(StudioServer, ConnectionsBeyondItsThreadsDoNotHangARealRequest) {
+  ServedStudio served("crowded");
+  const int port = served.port();
+  const int slow_count = studio::ServerOptions{}.threads + studio::ServerOptions{}.waiting + 16;
+  std::vector<int> slow;
+  // A few milliseconds apart, so that the server accepts each as it comes.
+  for (int i = 0; i < slow_count; ++i) {
+    slow.push_back(open_connection(port, "G"));
+    ASSERT_GE(slow.back(), 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(3));
+  }
+  std::atomic<bool> trickling{true};
+  std::thread trickle([&] {
+    const std::string head = "ET /api/state HTTP/1.1\r\nX-Slow: aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa";
+    for (std::size_t i = 0; trickling && i < head.size() * 100; ++i) {
+      for (const int fd : slow)
+        send(fd, &head[std::min(i, head.size() - 1)], 1, MSG_NOSIGNAL | MSG_DONTWAIT);
+      std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto start = std::chrono::steady_clock::now();
+  const std::string first =
+      raw_exchange(port, request("GET", "/api/state", port), false, std::chrono::seconds(10));
+  const double first_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  int status = status_of(first);
+  int attempts = 1;
+  while (status != 200 && attempts < 20) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    status = status_of(
+        raw_exchange(port, request("GET", "/api/state", port), false, std::chrono::seconds(10)));
+    ++attempts;
+  }
+  const double total_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  trickling = false;
+  trickle.join();
+  for (const int fd : slow)
+    close(fd);
+  std::printf(
+      "%d connections trickling: first answer %d in %.2f s; 200 after %d attempts, %.2f s\n",
+      slow_count, status_of(first), first_s, attempts, total_s);
+  EXPECT_TRUE(status_of(first) == 200 || status_of(first) == 503) << first.substr(0, 300);
+  if (status_of(first) == 503) {
+    EXPECT_EQ(header_of(first, "Retry-After"), "1");
+  }
+  EXPECT_LT(first_s, 3.0);
+  EXPECT_EQ(status, 200);
+  EXPECT_LT(total_s, 8.0);
 }
 
 TEST(StudioServer, StopEndsARunThatHasNotStartedYet) {

@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "assets.hpp"
+#include "connections.hpp"
 
 namespace fuzzygait::studio {
 namespace {
@@ -150,12 +151,22 @@ BodyRead read_body(const httplib::ContentReader& reader, const httplib::Response
   return read ? BodyRead::kWhole : BodyRead::kBroken;
 }
 
+detail::ConnectionLimits connection_limits(const ServerOptions& options) {
+  detail::ConnectionLimits limits;
+  limits.workers = options.threads;
+  limits.waiting = options.waiting;
+  limits.idle_seconds = options.idle_seconds;
+  limits.head_seconds = options.idle_seconds;
+  limits.listen_backlog = options.listen_backlog;
+  return limits;
+}
+
 }  // namespace
 
 struct Server::Impl {
   Studio& studio;
   ServerOptions options;
-  httplib::Server http;
+  detail::GuardedServer http;
   std::mutex studio_mutex;  // one request at a time reads or changes the studio
   int port = 0;
   bool loopback = true;
@@ -165,7 +176,8 @@ struct Server::Impl {
   std::atomic<bool> stopping{false};
   std::atomic<int> run_state{0};  // 0 not called, 1 running, 2 returned
 
-  Impl(Studio& s, ServerOptions o) : studio(s), options(std::move(o)) {
+  Impl(Studio& s, ServerOptions o)
+      : studio(s), options(std::move(o)), http(connection_limits(options)) {
     host_names = {"127.0.0.1", "localhost", "[::1]"};
     if (options.host != "0.0.0.0" && options.host != "::" && !options.host.empty())
       host_names.insert(lower(host_in_url(options.host)));
@@ -237,41 +249,44 @@ struct Server::Impl {
 
   // A POST route answering JSON from a Studio call with the request's body, read within the
   // limit (read_body); `call` null answers that there is no such route.
-  httplib::Server::HandlerWithContentReader post(std::function<json(const json&)> call) {
-    return [this, call = std::move(call)](const httplib::Request& req, httplib::Response& res,
-                                          const httplib::ContentReader& reader) {
-      std::string body;
-      switch (read_body(reader, res, options.max_body, body)) {
-        case BodyRead::kWhole:
-          break;
-        case BodyRead::kTooLarge:
-          res.status = 413;
-          send_json(res, too_large().to_json());
-          return;
-        case BodyRead::kAbandoned:
-          res.status = 413;
-          send_json_and_close(res, too_large().to_json());
-          return;
-        case BodyRead::kBroken:
-          res.status = 400;
-          send_json_and_close(res, RequestError(400, "body",
-                                                "the body could not be read "
-                                                "(a malformed chunk?)")
-                                       .to_json());
-          return;
-      }
-      if (!call) {
-        refuse(res, 404, "path", "no route for POST " + req.path);
-        return;
-      }
-      answer(call, body, res);
-    };
+  // `largest_body` 0: options.max_body.
+  httplib::Server::HandlerWithContentReader post(std::function<json(const json&)> call,
+                                                 std::size_t largest_body = 0) {
+    const std::size_t limit = std::max(options.max_body, largest_body);
+    return
+        [this, call = std::move(call), limit](const httplib::Request& req, httplib::Response& res,
+                                              const httplib::ContentReader& reader) {
+          std::string body;
+          switch (read_body(reader, res, limit, body)) {
+            case BodyRead::kWhole:
+              break;
+            case BodyRead::kTooLarge:
+              res.status = 413;
+              send_json(res, too_large(limit).to_json());
+              return;
+            case BodyRead::kAbandoned:
+              res.status = 413;
+              send_json_and_close(res, too_large(limit).to_json());
+              return;
+            case BodyRead::kBroken:
+              res.status = 400;
+              send_json_and_close(res, RequestError(400, "body",
+                                                    "the body could not be read "
+                                                    "(a malformed chunk?)")
+                                           .to_json());
+              return;
+          }
+          if (!call) {
+            refuse(res, 404, "path", "no route for POST " + req.path);
+            return;
+          }
+          answer(call, body, res);
+        };
   }
 
-  RequestError too_large() const {
-    return RequestError(
-        413, "body",
-        "the request body is larger than " + std::to_string(options.max_body) + " bytes");
+  static RequestError too_large(std::size_t limit) {
+    return RequestError(413, "body",
+                        "the request body is larger than " + std::to_string(limit) + " bytes");
   }
 
   // Method, Host, path, Origin and POST checks before any route (and before a body is read);
@@ -309,12 +324,16 @@ struct Server::Impl {
     return Response::Unhandled;
   }
 
-  // Headers on every answer, refusals included.
+  // Headers on every answer, refusals included (those GuardedServer writes itself too).
+  std::vector<std::pair<std::string, std::string>> protecting_headers() const {
+    return {{"Content-Security-Policy", security_policy},
+            {"X-Frame-Options", "DENY"},
+            {"X-Content-Type-Options", "nosniff"},
+            {"Referrer-Policy", "no-referrer"}};
+  }
   void protect(httplib::Response& res) const {
-    res.set_header("Content-Security-Policy", security_policy);
-    res.set_header("X-Frame-Options", "DENY");
-    res.set_header("X-Content-Type-Options", "nosniff");
-    res.set_header("Referrer-Policy", "no-referrer");
+    for (const auto& [name, value] : protecting_headers())
+      res.set_header(name, value);
   }
 
   void routes() {
@@ -322,7 +341,11 @@ struct Server::Impl {
     http.Get("/api/walk", get([this](const json&) { return studio.walk(); }));
     http.Post("/api/edit", post([this](const json& r) { return studio.edit(r); }));
     http.Post("/api/fired", post([this](const json& r) { return studio.fired(r); }));
-    http.Post("/api/rules", post([this](const json& r) { return studio.edit_rules(r); }));
+    // A controller's rules at their limits (Limits::kMostRules of Limits::kLongestRule) are
+    // larger than other requests: their route reads up to Limits::kLargestRulesBody.
+    http.Post("/api/rules", post([this](const json& r) { return studio.edit_rules(r); },
+                                 Limits::kLargestRulesBody));
+    http.Post("/api/term", post([this](const json& r) { return studio.edit_term(r); }));
     http.Post("/api/settings", post([this](const json& r) { return studio.change_settings(r); }));
     http.Post("/api/undo", post([this](const json&) { return studio.undo(); }));
     http.Post("/api/history", post([this](const json& r) { return studio.go_to(r); }));
@@ -376,9 +399,17 @@ Server::Server(Studio& studio, const ServerOptions& options)
   if (options.idle_seconds < 1 || options.idle_seconds > 600) {
     throw std::invalid_argument("idle_seconds must be between 1 and 600");
   }
+  if (options.waiting < 0 || options.waiting > 4096) {
+    throw std::invalid_argument("waiting must be between 0 and 4096");
+  }
+  if (options.listen_backlog < 1 || options.listen_backlog > 65535) {
+    throw std::invalid_argument("listen_backlog must be between 1 and 65535");
+  }
   s.loopback = is_loopback(options.host);
-  const auto threads = static_cast<std::size_t>(options.threads);
-  s.http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  std::string refusal_headers;
+  for (const auto& [name, value] : s.protecting_headers())
+    refusal_headers += name + ": " + value + "\r\n";
+  s.http.set_refusal_headers(std::move(refusal_headers));
   // SO_REUSEADDR alone (cpp-httplib's default sets SO_REUSEPORT, with which a second studio on
   // the same port would bind too and take half the connections).
   s.http.set_socket_options([](socket_t sock) {
@@ -387,7 +418,9 @@ Server::Server(Studio& studio, const ServerOptions& options)
   });
   // Small answers go out at once, not after a delayed acknowledgement.
   s.http.set_tcp_nodelay(true);
-  s.http.set_payload_max_length(options.max_body);
+  // A Content-Length past the largest any route reads is refused unread; each route then reads
+  // within its own limit (read_body).
+  s.http.set_payload_max_length(std::max(options.max_body, Limits::kLargestRulesBody));
   s.http.set_keep_alive_max_count(1000);
   // A connection that sends nothing for idle_seconds is closed, so that idle or half-open
   // connections hold a thread of the pool for that long at most.
@@ -432,6 +465,10 @@ Server::Server(Studio& studio, const ServerOptions& options)
     throw std::runtime_error("cannot listen on " + options.host + ":" +
                              std::to_string(options.port) +
                              " (in use by another program? try --port 0 for any free port)");
+  }
+  if (!s.http.deepen_listen_queue()) {
+    throw std::runtime_error("cannot listen on " + options.host + ":" + std::to_string(s.port) +
+                             " with a queue of " + std::to_string(options.listen_backlog));
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <optional>
 #include <span>
@@ -424,7 +425,8 @@ json controller_json(const gait::ControllerSet& set, const ControllerPlace& plac
                      {"inputs", inputs_json(c, partition)},
                      {"outputs", json::array()},
                      {"rules", rules_json(engine, partition.has_value())},
-                     {"response", response_json(c)}};
+                     {"response", response_json(c)},
+                     {"fast_path", c.fast_path()}};
   if (place.ground >= 0) {
     controller["ground"] = kGroundNames[static_cast<std::size_t>(place.ground)];
     controller["word"] = place.word;
@@ -588,6 +590,267 @@ Edited apply_rules(const gait::ControllerSet& set, const json& request) {
   edited.controller = place.id;
   edited.subject = place.id + ": rules";
   edited.text_label = place.id + ": " + rules_change(was, after);
+  return edited;
+}
+
+}  // namespace fuzzygait::studio::detail
+
+namespace fuzzygait::studio::detail {
+namespace {
+
+using fuzzy::TermKind;
+
+std::string shape_names() {
+  std::string names;
+  for (const TermKind kind : input_term_shapes())
+    names += (names.empty() ? "" : ", ") + std::string(fuzzy::shape_info(kind).name);
+  return names;
+}
+
+TermKind shape_field(const json& request) {
+  const std::string name = string_field(request, "shape");
+  const std::optional<TermKind> kind = fuzzy::term_kind_from_name(name);
+  const std::vector<TermKind>& offered = input_term_shapes();
+  if (kind && std::find(offered.begin(), offered.end(), *kind) != offered.end()) return *kind;
+  const bool output_only = kind && (*kind == TermKind::Constant || *kind == TermKind::Linear ||
+                                    *kind == TermKind::Function);
+  throw RequestError(
+      422, "shape",
+      "an input's term cannot be a '" + name + "'" +
+          (output_only ? " (an output's term: it has no membership over the input)" : "") +
+          "; the studio offers " + shape_names());
+}
+
+// Where a term lies along its input: its left foot, its peak and its right foot.
+struct Extent {
+  double low;
+  double peak;
+  double high;
+};
+
+Extent extent_of(const fuzzy::Term& t) {
+  const std::vector<double>& p = t.parameters;
+  switch (t.kind) {
+    case TermKind::Triangle:
+      return {p[0], p[1], p[2]};
+    case TermKind::Trapezoid:
+      return {p[0], (p[1] + p[2]) / 2, p[3]};
+    case TermKind::Gaussian:
+      return {p[0] - 2 * p[1], p[0], p[0] + 2 * p[1]};
+    case TermKind::Ramp: {
+      // Full at its end: the foot mirrored past it.
+      const double run = p[1] - p[0];
+      return run > 0 ? Extent{p[0], p[1], p[1] + run} : Extent{p[1] + run, p[1], p[0]};
+    }
+    default:
+      throw RequestError(422, "parameters",
+                         "term '" + t.name + "' is a " +
+                             std::string(fuzzy::shape_info(t.kind).name) +
+                             ": give the new shape's 'parameters'");
+  }
+}
+
+// The parameters of `kind` over `e`; a Ramp falls toward the peak when the peak lies in the lower
+// half of the input's span (a left shoulder), and rises to it otherwise.
+std::vector<double> parameters_over(TermKind kind, const Extent& e, double middle) {
+  switch (kind) {
+    case TermKind::Triangle:
+      return {e.low, e.peak, e.high};
+    case TermKind::Trapezoid:
+      return {e.low, (e.low + e.peak) / 2, (e.peak + e.high) / 2, e.high};
+    case TermKind::Gaussian:
+      return {e.peak, (e.high - e.low) / 4};
+    case TermKind::Ramp:
+      return e.peak <= middle ? std::vector<double>{e.high, e.peak}
+                              : std::vector<double>{e.low, e.peak};
+    default:
+      return {};
+  }
+}
+
+// Why `t` is no shape an input can hold, or "".
+std::string shape_problem(const fuzzy::Term& t) {
+  const fuzzy::TermShapeInfo& info = fuzzy::shape_info(t.kind);
+  const std::string shape(info.name);
+  if (static_cast<int>(t.parameters.size()) != info.parameter_count) {
+    std::string names;
+    for (const std::string_view n : info.parameter_names)
+      names += (names.empty() ? "" : " ") + std::string(n);
+    return "a " + shape + " takes " + std::to_string(info.parameter_count) + " parameters (" +
+           names + "), got " + std::to_string(t.parameters.size());
+  }
+  for (const double p : t.parameters) {
+    if (!std::isfinite(p) || std::abs(p) > Limits::kLargestValue)
+      return "parameters must be finite and within " + number_text(Limits::kLargestValue);
+  }
+  if (std::string disorder = fuzzy::points_out_of_order(t); !disorder.empty()) return disorder;
+  const std::vector<double>& p = t.parameters;
+  if ((t.kind == TermKind::Triangle || t.kind == TermKind::Trapezoid) && !(p.front() < p.back()))
+    return "a " + shape + "'s feet must be apart (it would be no wider than a point)";
+  if (t.kind == TermKind::Ramp && !(p[0] != p[1]))
+    return "a Ramp's start and end must differ (it would be a step)";
+  if (t.kind == TermKind::Gaussian && !(p[1] > 0))
+    return "a Gaussian's standardDeviation must be above 0, got " + number_text(p[1]);
+  return {};
+}
+
+std::vector<double> parameters_field(const json& request) {
+  const json& list = request.at("parameters");
+  if (!list.is_array()) throw RequestError(400, "parameters", "'parameters' must be a list");
+  std::vector<double> values;
+  for (const json& v : list) {
+    if (!v.is_number()) throw RequestError(400, "parameters", "'parameters' must be numbers");
+    values.push_back(v.get<double>());
+  }
+  return values;
+}
+
+// The rules (numbers from 1, as rules_json lists them) whose conditions read `term` of `input`.
+std::vector<std::size_t> rules_reading(const fuzzy::Engine& engine, const std::string& input,
+                                       const std::string& term) {
+  std::vector<std::size_t> numbers;
+  std::size_t number = 0;
+  for (const fuzzy::RuleBlock& block : engine.rule_blocks) {
+    for (const fuzzy::Rule& rule : block.rules) {
+      ++number;
+      const bool reads = std::any_of(rule.propositions.begin(), rule.propositions.end(),
+                                     [&](const fuzzy::Proposition& p) {
+                                       return !p.output && p.variable == input && p.term == term;
+                                     });
+      if (reads) numbers.push_back(number);
+    }
+  }
+  return numbers;
+}
+
+std::vector<fuzzy::Term>::iterator term_named(fuzzy::InputVariable& v, const std::string& name,
+                                              const std::string& controller) {
+  const auto found = std::find_if(v.terms.begin(), v.terms.end(),
+                                  [&](const fuzzy::Term& t) { return t.name == name; });
+  if (found == v.terms.end()) {
+    throw RequestError(422, "term",
+                       "'" + v.name + "' of '" + controller + "' has no term '" + name +
+                           "' (its terms: " + names_of(v.terms) + ")");
+  }
+  return found;
+}
+
+// A new term's name: letters, digits and '_', not taken by another term of the input.
+void check_new_name(const fuzzy::InputVariable& v, const std::string& name) {
+  const bool plain = !name.empty() && name.size() <= 64 &&
+                     std::isalpha(static_cast<unsigned char>(name.front())) &&
+                     std::all_of(name.begin(), name.end(), [](char c) {
+                       return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                     });
+  if (!plain) {
+    throw RequestError(
+        422, "term",
+        "a term's name is a letter then up to 63 letters, digits or '_', got '" + name + "'");
+  }
+  if (std::any_of(v.terms.begin(), v.terms.end(),
+                  [&](const fuzzy::Term& t) { return t.name == name; })) {
+    throw RequestError(422, "term", "'" + v.name + "' has a term '" + name + "' already");
+  }
+}
+
+// A rule can read the term ("if INPUT is TERM then ..."): its name is no word of the rules' own.
+void check_readable_in_rules(const fuzzy::Engine& engine, const std::string& input,
+                             const std::string& term) {
+  if (engine.outputs.empty() || engine.outputs[0].terms.empty()) return;
+  const fuzzy::OutputVariable& out = engine.outputs[0];
+  try {
+    fuzzy::parse_rule(
+        "if " + input + " is " + term + " then " + out.name + " is " + out.terms[0].name, engine);
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(422, "term", "'" + term + "' cannot be read in a rule: " + e.what());
+  }
+}
+
+}  // namespace
+
+const std::vector<fuzzy::TermKind>& input_term_shapes() {
+  static const std::vector<fuzzy::TermKind> shapes = {TermKind::Triangle, TermKind::Trapezoid,
+                                                      TermKind::Ramp, TermKind::Gaussian};
+  return shapes;
+}
+
+Edited apply_term(const gait::ControllerSet& set, const json& request) {
+  check_fields(request, {"controller", "variable", "term", "action", "shape", "parameters"});
+  const ControllerPlace place = find_place(set, string_field(request, "controller"));
+  const gait::Controller& before = controller_at(set, place);
+  fuzzy::Engine engine = before.engine();
+  const std::string variable = string_field(request, "variable");
+  fuzzy::InputVariable& input = find_input(engine, variable, place.id);
+  const std::string name = string_field(request, "term");
+  const std::string action = string_field(request, "action");
+  const auto [low, high] = input_domain(input);
+  std::string change;
+  if (action == "add") {
+    fuzzy::Term term;
+    term.name = name;
+    term.kind = shape_field(request);
+    check_new_name(input, name);
+    term.parameters =
+        request.contains("parameters")
+            ? parameters_field(request)
+            : parameters_over(term.kind,
+                              {low + (high - low) / 4, (low + high) / 2, high - (high - low) / 4},
+                              (low + high) / 2);
+    if (const std::string problem = shape_problem(term); !problem.empty())
+      throw RequestError(422, "parameters", "term '" + name + "': " + problem);
+    change = "added (" + std::string(fuzzy::shape_info(term.kind).name) + " " +
+             term.parameter_text() + ")";
+    input.terms.push_back(std::move(term));
+    check_readable_in_rules(engine, variable, name);
+  } else if (action == "remove") {
+    check_fields(request, {"controller", "variable", "term", "action"});
+    const auto term = term_named(input, name, place.id);
+    if (input.terms.size() == 1) {
+      throw RequestError(
+          422, "term", "'" + name + "' is the only term of '" + variable + "': an input keeps one");
+    }
+    if (const std::vector<std::size_t> rules = rules_reading(engine, variable, name);
+        !rules.empty()) {
+      std::string numbers;
+      for (const std::size_t r : rules)
+        numbers += (numbers.empty() ? "" : ", ") + std::to_string(r);
+      throw RequestError(422, "term",
+                         "'" + name + "' of '" + variable + "' is read by rule" +
+                             (rules.size() > 1 ? "s " : " ") + numbers +
+                             ": change or delete them first");
+    }
+    input.terms.erase(term);
+    change = "removed";
+  } else if (action == "shape") {
+    const auto term = term_named(input, name, place.id);
+    const TermKind kind = shape_field(request);
+    const std::string was = term->parameter_text();
+    const std::string from(fuzzy::shape_info(term->kind).name);
+    std::vector<double> parameters =
+        request.contains("parameters") ? parameters_field(request)
+                                       : parameters_over(kind, extent_of(*term), (low + high) / 2);
+    term->kind = kind;
+    term->parameters = std::move(parameters);
+    if (const std::string problem = shape_problem(*term); !problem.empty())
+      throw RequestError(422, "parameters", "term '" + name + "': " + problem);
+    const std::string to(fuzzy::shape_info(kind).name);
+    change = from == to ? to + " " + was + " -> " + term->parameter_text()
+                        : from + " -> " + to + " " + term->parameter_text();
+  } else {
+    throw RequestError(422, "action",
+                       "'action' is \"add\", \"remove\" or \"shape\", got '" + action + "'");
+  }
+  if (const std::vector<std::string> problems = engine.problems(); !problems.empty())
+    throw RequestError(422, "term", "the controller could not be evaluated: " + problems.front());
+  Edited edited{set, {}, {}, 0.0, 0.0, {}};
+  put_controller(edited.set, place, std::move(engine), before.source(), "term");
+  const bool fast_after = controller_at(edited.set, place).fast_path();
+  edited.controller = place.id;
+  edited.subject = place.id + ": " + variable + " term '" + name + "'";
+  edited.text_label = edited.subject + " " + change +
+                      (before.fast_path() && !fast_after   ? ", off the walker's fast path"
+                       : !before.fast_path() && fast_after ? ", on the walker's fast path"
+                                                           : "");
   return edited;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzzygait/fuzzy/term.hpp"
 #include "fuzzygait/gait/controllers.hpp"
 
 namespace fuzzygait::studio::detail {
@@ -59,5 +60,22 @@ Edited apply_edit(const gait::ControllerSet& set, const nlohmann::json& request)
 // changed ("swing_knee: rule 3 edited", "rule 5 added", "rule 2 deleted"); an edit that leaves
 // the rules as they were has an empty controller.
 Edited apply_rules(const gait::ControllerSet& set, const nlohmann::json& request);
+
+// The shapes an input's term may take in the studio. Each runs on the library's evaluator; only
+// a strong triangular partition (triangles, one rule a combination) runs on the walker's fast
+// path.
+const std::vector<fuzzy::TermKind>& input_term_shapes();
+
+// {"controller": ID, "variable": INPUT, "term": NAME, "action": A, ...}: one term of an input
+// changed, each a step of the history with a label ("swing_knee: delta term 'far' added"):
+//   "add"     a new term NAME of "shape" (input_term_shapes), its "parameters" given or placed
+//             in the middle of the input's span; no rule reads it until one is written
+//   "remove"  the term NAME; refused (422, "term") while rules read it, naming them
+//   "shape"   the term NAME as "shape": its "parameters" given, or made from its present shape
+//             (its foot, peak and foot kept: a Gaussian's mean at the peak, 4 deviations across)
+// A shape the input cannot hold (an output's Constant, Linear or Function, a shape not offered),
+// parameters of the wrong count, out of order, a zero width or deviation, a name a rule could
+// not read or one taken are refused with 422 naming the field and why.
+Edited apply_term(const gait::ControllerSet& set, const nlohmann::json& request);
 
 }  // namespace fuzzygait::studio::detail

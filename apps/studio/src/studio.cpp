@@ -3,11 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <functional>
 #include <memory>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <utility>
 
@@ -22,6 +19,7 @@
 #include "fuzzygait/io/walk_csv.hpp"
 #include "request.hpp"
 #include "runtime/common/format.hpp"
+#include "set_folder.hpp"
 #include "set_view.hpp"
 #include "walk_view.hpp"
 
@@ -85,6 +83,13 @@ std::optional<std::pair<double, double>> speed_range(const gait::ControllerSet& 
   const terrain::Terrain flat = terrain::Terrain::flat();
   const gait::Walker walker(set, options, flat);
   return std::pair{walker.min_speed(), walker.max_speed()};
+}
+
+json term_shape_names() {
+  json names = json::array();
+  for (const fuzzy::TermKind kind : detail::input_term_shapes())
+    names.push_back(fuzzy::shape_info(kind).name);
+  return names;
 }
 
 }  // namespace
@@ -321,6 +326,25 @@ struct Studio::Session {
 
   json opened_json() const { return {{"id", opened.id}, {"label", opened.label}}; }
 
+  // Refuses (422 naming `field`) a set that would not walk with the current settings.
+  void check_walks(const gait::ControllerSet& set, const char* field) const {
+    try {
+      detail::check_walkable(set, settings, ground);
+    } catch (const std::invalid_argument& e) {
+      throw RequestError(422, field, std::string("the set would not walk: ") + e.what());
+    }
+  }
+
+  // What an edit of one controller answers: the history, the walk and the controller `id` as it
+  // is now (none for an empty id).
+  json edited_answer(const std::string& id) {
+    json answer = {{"history", history()}, {"walk", current_walk()}};
+    for (const detail::ControllerPlace& place : detail::controller_places(current)) {
+      if (place.id == id) answer["controller"] = detail::controller_json(current, place);
+    }
+    return answer;
+  }
+
   // A step the set walks: the setting, or the nearest the set takes (a set whose shortest step
   // is longer than the current one); a speed, the nearest it walks, or by step length for a set
   // without a stride relation.
@@ -389,7 +413,12 @@ json Studio::state() const {
           {"terrains", terrains},
           {"references", io::builtin_normative_names()},
           {"reference", detail::reference_json(s.reference)},
-          {"compare", s.compared ? json(s.compared->id) : json(nullptr)}};
+          {"compare", s.compared ? json(s.compared->id) : json(nullptr)},
+          {"term_shapes", term_shape_names()},
+          {"rule_limits",
+           {{"rules", Limits::kMostRules},
+            {"rule_bytes", Limits::kLongestRule},
+            {"body_bytes", Limits::kLargestRulesBody}}}};
 }
 
 json Studio::walk() {
@@ -400,11 +429,7 @@ json Studio::walk() {
 json Studio::edit(const json& request) {
   Session& s = *session_;
   detail::Edited edited = detail::apply_edit(s.current, request);
-  try {
-    detail::check_walkable(edited.set, s.settings, s.ground);
-  } catch (const std::invalid_argument& e) {
-    throw RequestError(422, "value", std::string("the set would not walk: ") + e.what());
-  }
+  s.check_walks(edited.set, "value");
   const std::string gesture = detail::optional_string(request, "gesture").value_or("");
   if (!gesture.empty() && gesture == s.gesture && !s.undo.empty() &&
       edited.subject == s.gesture_subject) {
@@ -420,16 +445,8 @@ json Studio::edit(const json& request) {
     s.gesture_subject = edited.subject;
   }
   s.gesture = gesture;
-  json answer = {{"history", s.history()}, {"walk", s.current_walk()}};
-  if (edited.controller.empty()) {
-    answer["parameters"] = detail::parameters_json(s.current);
-  } else {
-    for (const detail::ControllerPlace& place : detail::controller_places(s.current)) {
-      if (place.id == edited.controller) {
-        answer["controller"] = detail::controller_json(s.current, place);
-      }
-    }
-  }
+  json answer = s.edited_answer(edited.controller);
+  if (edited.controller.empty()) answer["parameters"] = detail::parameters_json(s.current);
   return answer;
 }
 
@@ -437,19 +454,18 @@ json Studio::edit_rules(const json& request) {
   Session& s = *session_;
   detail::Edited edited = detail::apply_rules(s.current, request);
   if (!edited.controller.empty()) {
-    try {
-      detail::check_walkable(edited.set, s.settings, s.ground);
-    } catch (const std::invalid_argument& e) {
-      throw RequestError(422, "rules", std::string("the set would not walk: ") + e.what());
-    }
+    s.check_walks(edited.set, "rules");
     s.replace(std::move(edited.set), edited.label());
   }
-  const std::string id = detail::string_field(request, "controller");
-  json answer = {{"history", s.history()}, {"walk", s.current_walk()}};
-  for (const detail::ControllerPlace& place : detail::controller_places(s.current)) {
-    if (place.id == id) answer["controller"] = detail::controller_json(s.current, place);
-  }
-  return answer;
+  return s.edited_answer(detail::string_field(request, "controller"));
+}
+
+json Studio::edit_term(const json& request) {
+  Session& s = *session_;
+  detail::Edited edited = detail::apply_term(s.current, request);
+  s.check_walks(edited.set, "term");
+  s.replace(std::move(edited.set), edited.label());
+  return s.edited_answer(edited.controller);
 }
 
 json Studio::fired(const json& request) {
@@ -598,27 +614,6 @@ json Studio::open(const json& request) {
 
 namespace {
 
-// The .fll files a saved set's manifest names (the studio's own earlier save of it): the only
-// files a save may remove.
-std::set<std::string> manifest_files(const std::filesystem::path& manifest) {
-  std::set<std::string> files;
-  std::ifstream in(manifest);
-  const json m = json::parse(in, nullptr, false);
-  const std::function<void(const json&)> collect = [&](const json& value) {
-    if (value.is_string()) {
-      const std::string name = value.get<std::string>();
-      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".fll") == 0 &&
-          name.find('/') == std::string::npos && name != ".." && name != ".")
-        files.insert(name);
-    } else if (value.is_structured()) {
-      for (const json& item : value)
-        collect(item);
-    }
-  };
-  if (!m.is_discarded()) collect(m);
-  return files;
-}
-
 // Refuses a save whose folder is a symbolic link, holds one, or is not a folder of the workspace:
 // a save writes only into WORKSPACE/NAME itself.
 void check_save_folder(const std::filesystem::path& workspace,
@@ -669,22 +664,9 @@ json Studio::save(const json& request) {
   }
   gait::ControllerSet copy = s.current;
   copy.name = name;
-  try {
-    // A set saved there before may have had terrain files this one has not: those its manifest
-    // names go; other files stay.
-    const std::set<std::string> before = manifest_files(folder / "manifest.json");
-    io::save_controller_set(copy, folder);
-    const std::set<std::string> now = manifest_files(folder / "manifest.json");
-    for (const std::string& file : before) {
-      std::error_code error;
-      const std::filesystem::path path = folder / file;
-      if (!now.count(file) &&
-          std::filesystem::is_regular_file(std::filesystem::symlink_status(path, error)))
-        std::filesystem::remove(path, error);
-    }
-  } catch (const std::exception& e) {
-    throw RequestError(500, "name", "cannot save to " + folder.string() + ": " + e.what());
-  }
+  // The check above tells why a save is refused; writing relative to the folder opened without
+  // following links keeps a link swapped in since from being followed.
+  detail::write_set_folder(s.options.workspace, name, io::controller_set_files(copy));
   s.saved_version = s.version;
   s.saved_name = name;
   return {{"saved", "saved:" + name},

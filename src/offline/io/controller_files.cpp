@@ -10,8 +10,8 @@
 
 namespace fuzzygait::io {
 
-void save_controller_set(const gait::ControllerSet& set, const std::filesystem::path& directory) {
-  std::filesystem::create_directories(directory);
+std::vector<SetFile> controller_set_files(const gait::ControllerSet& set) {
+  std::vector<SetFile> written;
   nlohmann::ordered_json manifest;
   manifest["name"] = set.name;
   manifest["description"] = set.description;
@@ -38,13 +38,13 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
   for (int s = 0; s < gait::kSlotCount; ++s) {
     const std::string name = std::string(gait::slot_name(s)) + ".fll";
     files[std::string(gait::slot_name(s))] = name;
-    write_file(directory / name,
-               fuzzy::write_fll(set.controllers.at(static_cast<std::size_t>(s)).engine()));
+    written.push_back(
+        {name, fuzzy::write_fll(set.controllers.at(static_cast<std::size_t>(s)).engine())});
   }
   manifest["controllers"] = files;
   if (set.stride) {
     manifest["stride"] = "stride.fll";
-    write_file(directory / "stride.fll", fuzzy::write_fll(set.stride->engine()));
+    written.push_back({"stride.fll", fuzzy::write_fll(set.stride->engine())});
   }
   nlohmann::ordered_json upper_body;
   for (int p = 0; p < gait::kUpperBodyCount; ++p) {
@@ -84,9 +84,9 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
         const std::string name = std::string(kGroundNames[g]) + "_" +
                                  std::string(gait::slot_name(s)) + "_" + words.words[w] + ".fll";
         by_word[words.words[w]] = name;
-        write_file(
-            directory / name,
-            fuzzy::write_fll(set.terrain_controllers.at(static_cast<std::size_t>(c)).engine()));
+        written.push_back(
+            {name,
+             fuzzy::write_fll(set.terrain_controllers.at(static_cast<std::size_t>(c)).engine())});
       }
       if (!by_word.empty()) by_slot[std::string(gait::slot_name(s))] = by_word;
     }
@@ -94,7 +94,14 @@ void save_controller_set(const gait::ControllerSet& set, const std::filesystem::
     terrain[kGroundNames[g]] = ground;
   }
   if (!terrain.empty()) manifest["terrain"] = terrain;
-  write_file(directory / "manifest.json", manifest.dump(2) + "\n");
+  written.push_back({"manifest.json", manifest.dump(2) + "\n"});
+  return written;
+}
+
+void save_controller_set(const gait::ControllerSet& set, const std::filesystem::path& directory) {
+  std::filesystem::create_directories(directory);
+  for (const SetFile& file : controller_set_files(set))
+    write_file(directory / file.name, file.text);
 }
 
 }  // namespace fuzzygait::io

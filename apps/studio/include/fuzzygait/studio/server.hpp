@@ -4,8 +4,10 @@
 //   GET  /                      the page; /src/..., /style.css its modules; /vendor/... the npm
 //                               packages it imports (three.js, uPlot, lil-gui)
 //   GET  /api/state, /api/walk  Studio::state(), Studio::walk()
-//   POST /api/edit, /api/settings, /api/undo, /api/redo, /api/open, /api/save, /api/compare
-//                               the Studio call of that name, the body its request
+//   POST /api/edit, /api/rules, /api/term, /api/fired, /api/settings, /api/undo, /api/redo,
+//        /api/history, /api/open, /api/save, /api/compare
+//                               the Studio call of that name, the body its request (/api/rules
+//                               up to Limits::kLargestRulesBody, the others max_body)
 //   GET  /api/download/FILE     Studio::download(FILE), as an attachment
 //
 // Refusals answer with a 4xx status and {"error", "field", "status"}: a path with '..' (400), an
@@ -13,7 +15,10 @@
 // (400) or not of Content-Type application/json (415), a body over the size limit in any transfer
 // encoding (413; the rest of it is read and dropped, or the connection closed), a Host header that
 // does not name this server or an Origin of another site, on any address it listens on (403:
-// another site's page cannot drive the studio, DNS rebinding included), and every RequestError.
+// another site's page cannot drive the studio, DNS rebinding included), a request line over 8 KiB
+// (414), a header line over 8 KiB or headers over 64 KiB (431, read no further), a head that takes
+// longer than idle_seconds to arrive (400), more connections than threads and waiting together
+// (503 with Retry-After), and every RequestError.
 // Every answer carries a Content-Security-Policy (frame-ancestors 'none'), X-Frame-Options: DENY
 // and X-Content-Type-Options: nosniff.
 #pragma once
@@ -31,7 +36,11 @@ struct ServerOptions {
   int port = 8642;                   // 0: any free port (port() tells which)
   std::size_t max_body = 64 * 1024;  // bytes of a request body, however it is sent
   int threads = 64;                  // connections served at once
-  int idle_seconds = 2;              // a connection that sends nothing for this long is closed
+  // Connections that may wait for one of the threads (idle ones are then closed to make room);
+  // one more is answered 503 with Retry-After at once.
+  int waiting = 64;
+  int listen_backlog = 256;  // connections the kernel queues before the server accepts them
+  int idle_seconds = 2;      // a connection that sends nothing for this long is closed
   // Names a browser may reach the server by besides 127.0.0.1, localhost, [::1] and `host` (the
   // machine's own address or name when `host` is 0.0.0.0); a request's Host must be one of them
   // with the port, and an Origin http:// one of them with the port.

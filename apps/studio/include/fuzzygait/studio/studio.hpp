@@ -66,6 +66,10 @@ struct Limits {
   static constexpr std::size_t kHistory = 200;       // undo steps kept
   static constexpr std::size_t kMostRules = 400;     // rules of one controller in an edit
   static constexpr std::size_t kLongestRule = 1000;  // characters of one rule
+  // The largest body of a rules edit (the server's /api/rules; other requests take 64 KiB): the
+  // most rules at their longest, each character written as JSON at worst ('"' and '\\' as two),
+  // with quotes and commas, and room for the rest of the request.
+  static constexpr std::size_t kLargestRulesBody = kMostRules * (2 * kLongestRule + 3) + 1024;
 };
 
 // A file to download: its name, MIME type and bytes.
@@ -107,6 +111,13 @@ class Studio {
   // edit() does. A rule that does not read (an unknown word, a term its variable lacks) is
   // refused with 422 naming "rules", the rule's number and the word.
   nlohmann::json edit_rules(const nlohmann::json& request);
+  // {"controller": ID, "variable": INPUT, "term": NAME, "action": "add" | "remove" | "shape",
+  //  "shape": SHAPE, "parameters": [...]}: a term added to an input, removed from it, or given
+  // another shape (Triangle, Trapezoid, Ramp, Gaussian), one step of the history ("swing_knee:
+  // delta term 'far' added (Gaussian 0.5 0.2)"). Answers as edit() does. Refused with 422 naming
+  // the field: a term rules read (naming them), a shape an input cannot hold, parameters out of
+  // order or of no width, a name taken or one a rule could not read. docs/studio.md has the rest.
+  nlohmann::json edit_term(const nlohmann::json& request);
   // {"time": S}: which rules fire at the walk's frame nearest S seconds (the page's frames, 30 a
   // second): for each of the eight slots' controllers the inputs it read there (from the leg it
   // drives), each rule's firing strength and the output, by the library's evaluator.
