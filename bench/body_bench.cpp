@@ -91,13 +91,7 @@ void add_body_command(CLI::App& app) {
       "body",
       "One character's frame with the whole body on a path and a skeleton, as a ratio to "
       "the walker alone");
-  command->add_option("--style", options->style, "Built-in controller set")->capture_default_str();
-  command->add_option("--repetitions", options->repetitions, "Repetitions; the median is reported")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  command->add_option("--window", options->window, "Simulated seconds timed per repetition")
-      ->check(CLI::Range(0.1, 60.0))
-      ->capture_default_str();
+  add_walk_options(*command, options->style, options->repetitions, options->window);
   command->callback([options]() { run_body_benchmark(*options); });
 }
 

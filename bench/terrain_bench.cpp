@@ -77,13 +77,7 @@ void add_terrain_command(CLI::App& app) {
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
       "terrain", "A lone walker's time step on ramps and stairs, as a ratio to level ground");
-  command->add_option("--style", options->style, "Built-in controller set")->capture_default_str();
-  command->add_option("--repetitions", options->repetitions, "Repetitions; the median is reported")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  command->add_option("--window", options->window, "Simulated seconds timed per repetition")
-      ->check(CLI::Range(0.1, 60.0))
-      ->capture_default_str();
+  add_walk_options(*command, options->style, options->repetitions, options->window);
   command->callback([options]() { run_terrain_benchmark(*options); });
 }
 

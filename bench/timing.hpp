@@ -24,6 +24,19 @@ inline void add_timing_options(CLI::App& command, double& min_seconds, int& repe
       ->capture_default_str();
 }
 
+// The options of the benchmarks that time one walk: the set, the repetitions and the simulated
+// seconds timed in each.
+inline void add_walk_options(CLI::App& command, std::string& style, int& repetitions,
+                             double& window) {
+  command.add_option("--style", style, "Built-in controller set")->capture_default_str();
+  command.add_option("--repetitions", repetitions, "Repetitions; the median is reported")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command.add_option("--window", window, "Simulated seconds timed per repetition")
+      ->check(CLI::Range(0.1, 60.0))
+      ->capture_default_str();
+}
+
 using Clock = std::chrono::steady_clock;
 
 // Wall seconds `work()` takes.

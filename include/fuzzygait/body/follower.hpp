@@ -80,8 +80,11 @@ class PathFollower {
   };
 
   FootFrame path_frame(double x, double lateral) const noexcept;
-  // The set's answer for `part` from leg `leg`'s metrics, radians; 0 without a controller.
-  double upper_body_angle(const gait::Walker& walker, gait::UpperBody part, int leg) noexcept;
+  // The metrics an upper body controller reads of leg `leg` (the ground's left 0: refused).
+  static gait::MetricValues leg_metrics(const gait::Walker& walker, int leg) noexcept;
+  // The set's answer for `part` from a leg's metrics, radians; 0 without a controller.
+  double upper_body_angle(const gait::ControllerSet& set, gait::UpperBody part,
+                          const gait::MetricValues& metrics) noexcept;
 
   Humanoid humanoid_;
   const path::Path* path_;

@@ -52,7 +52,7 @@ std::vector<SetFile> controller_set_files(const gait::ControllerSet& set) {
     if (!controller) continue;
     const std::string part(gait::upper_body_name(static_cast<gait::UpperBody>(p)));
     upper_body[part] = "upper_body_" + part + ".fll";
-    write_file(directory / ("upper_body_" + part + ".fll"), fuzzy::write_fll(controller->engine()));
+    written.push_back({"upper_body_" + part + ".fll", fuzzy::write_fll(controller->engine())});
   }
   if (!upper_body.empty()) manifest["upper_body"] = upper_body;
   // The terrain words: each kind of ground's words, and its files named GROUND_SLOT_WORD.fll.

@@ -86,11 +86,7 @@ PathFollower::PathFollower(const Humanoid& humanoid, const path::Path& path,
   }
 }
 
-double PathFollower::upper_body_angle(const gait::Walker& walker, gait::UpperBody part,
-                                      int leg) noexcept {
-  const auto p = static_cast<std::size_t>(part);
-  const auto& controller = walker.controllers().upper_body[p];
-  if (!options_.upper_body || !controller) return 0.0;
+gait::MetricValues PathFollower::leg_metrics(const gait::Walker& walker, int leg) noexcept {
   const gait::WalkerState& state = walker.state();
   const gait::LegState& l = state.legs[static_cast<std::size_t>(leg)];
   gait::MetricValues metrics{};
@@ -102,6 +98,14 @@ double PathFollower::upper_body_angle(const gait::Walker& walker, gait::UpperBod
   set(gait::Metric::Ankle, rig::degrees(l.angles.ankle));
   set(gait::Metric::Toe, rig::degrees(l.angles.toe));
   set(gait::Metric::Pace, gait::Walker::pace(state.speed, walker.segments()));
+  return metrics;
+}
+
+double PathFollower::upper_body_angle(const gait::ControllerSet& set, gait::UpperBody part,
+                                      const gait::MetricValues& metrics) noexcept {
+  const auto p = static_cast<std::size_t>(part);
+  const auto& controller = set.upper_body[p];
+  if (!options_.upper_body || !controller) return 0.0;
   const double degrees = controller->evaluate(metrics, workspaces_[p]);
   return std::isfinite(degrees) ? degrees * (std::numbers::pi / 180.0) : 0.0;
 }
@@ -120,8 +124,11 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
   const Quat facing = yaw(at_hips.heading);
   // Each side turns forward by the answer to the other side's leg; the body turns right (heading
   // turns left +) as its left side comes forward.
+  const gait::ControllerSet& set = walker.controllers();
+  const std::array<gait::MetricValues, 2> metrics = {leg_metrics(walker, 0),
+                                                     leg_metrics(walker, 1)};
   auto turn = [&](gait::UpperBody part) {
-    return upper_body_angle(walker, part, 0) - upper_body_angle(walker, part, 1);
+    return upper_body_angle(set, part, metrics[0]) - upper_body_angle(set, part, metrics[1]);
   };
   const Quat pelvis =
       facing * yaw(turn(gait::UpperBody::PelvisRotation)) * axis_angle(kLeft, sagittal.pelvis_tilt);
@@ -218,8 +225,9 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
   }
   for (const rig::Side side : rig::kSides) {
     // The arm swings against its own leg.
-    const double shoulder = upper_body_angle(walker, gait::UpperBody::Shoulder, rig::index(side));
-    const double elbow = upper_body_angle(walker, gait::UpperBody::Elbow, rig::index(side));
+    const gait::MetricValues& own = metrics[static_cast<std::size_t>(rig::index(side))];
+    const double shoulder = upper_body_angle(set, gait::UpperBody::Shoulder, own);
+    const double elbow = upper_body_angle(set, gait::UpperBody::Elbow, own);
     const int arm = index(side == rig::Side::Left ? Joint::left_upper_arm : Joint::right_upper_arm);
     const Quat upper = thorax * axis_angle(kLeft, -shoulder);
     const Quat lower = upper * axis_angle(kLeft, -elbow);
