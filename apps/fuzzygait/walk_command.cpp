@@ -54,15 +54,19 @@ struct WalkOptions {
   std::string skeleton;  // a skeleton file: its proportions, and the body's BVH on it
 };
 
-// The whole body's walk (--path, --skeleton): a walker like the command's, bent onto the path and
-// posed on the skeleton, frame by frame at `fps`, until `frames` frames or, with frames 0, until
-// the hips pass the path's end. Writes PREFIX.body.bvh; returns the frames walked.
+// The whole body's walk (--path, --skeleton): a walker like the command's, bent onto the path as
+// `humanoid` and posed on the skeleton, frame by frame at `fps`, until `frames` frames or, with
+// frames 0, until the hips pass the path's end or stall (5 cm in 3 s: the sagittal walk then
+// says where). Writes PREFIX.body.bvh; returns the frames walked.
 std::size_t write_body_walk(const gait::ControllerSet& set, const gait::WalkerOptions& options,
                             const terrain::Terrain& ground, const path::Path& route,
-                            const body::Skeleton& skeleton, const body::SkeletonPoser& poser,
-                            double fps, std::size_t frames, const std::string& file) {
+                            const body::Humanoid& humanoid, const body::Skeleton& skeleton,
+                            const body::SkeletonPoser& poser, double fps, std::size_t frames,
+                            const std::string& file) {
   gait::Walker walker(set, options, ground);
-  body::PathFollower follower(poser.humanoid(), route, walker);
+  body::PathFollower follower(humanoid, route, walker);
+  std::vector<double> travelled;
+  const auto three_seconds = static_cast<std::size_t>(3.0 * fps);
   std::vector<body::Quat> rotations;
   std::vector<body::Vec3> roots;
   const auto longest = static_cast<std::size_t>(3600.0 * fps);
@@ -72,7 +76,10 @@ std::size_t write_body_walk(const gait::ControllerSet& set, const gait::WalkerOp
     roots.emplace_back();
     poser.pose(follower.update(walker),
                std::span(rotations).subspan(rotations.size() - poser.joint_count()), roots.back());
-    if (frames == 0 && walker.pose().pelvis.x >= route.length() + 0.3) break;
+    travelled.push_back(walker.pose().pelvis.x);
+    if (frames > 0) continue;
+    if (travelled.back() >= route.length() + 0.3) break;
+    if (i >= three_seconds && travelled[i] - travelled[i - three_seconds] < 0.05) break;
   }
   io::write_file(file, [&](std::ostream& out) {
     io::write_skeleton_bvh(out, skeleton, rotations, roots, {.frame_time = 1.0 / fps});
@@ -267,6 +274,10 @@ void add_walk_command(CLI::App& app) {
     std::optional<path::Path> route;
     std::optional<body::Skeleton> skeleton;
     std::optional<body::SkeletonPoser> poser;
+    std::optional<body::Humanoid> humanoid;  // the walk's body: the skeleton's, or the stature's
+    if (walk->count("--corner-radius") > 0 && o->path.empty()) {
+      throw std::invalid_argument("--corner-radius rounds the corners of a --path: give one");
+    }
     if (whole_body) {
       if (!o->skeleton.empty() && body_given) {
         throw std::invalid_argument(
@@ -288,20 +299,22 @@ void add_walk_command(CLI::App& app) {
         std::optional<body::HumanoidMap> map;
         if (extension != ".bvh") map = io::read_vrm_humanoid_map(file, *skeleton);
         poser.emplace(*skeleton, map ? *map : body::map_humanoid(*skeleton));
-        options.segments = poser->humanoid().segments();
+        humanoid = poser->humanoid();
+        options.segments = humanoid->segments();
       } else {
-        body::Humanoid humanoid = body::humanoid_from_stature(o->stature);
+        body::Humanoid built = body::humanoid_from_stature(o->stature);
         const rig::Segments& s = options.segments;  // a trained set's, or given one by one
         for (const rig::Side side : rig::kSides) {
-          humanoid[body::lower_leg(side)] = {0.0, -s.thigh, 0.0};
-          humanoid[body::foot(side)] = {0.0, -s.shank, 0.0};
-          humanoid[body::toes(side)] = {0.0, -s.ankle_height, s.ball};
-          humanoid[body::toes_end(side)] = {0.0, 0.0, s.toe};
+          built[body::lower_leg(side)] = {0.0, -s.thigh, 0.0};
+          built[body::foot(side)] = {0.0, -s.shank, 0.0};
+          built[body::toes(side)] = {0.0, -s.ankle_height, s.ball};
+          built[body::toes_end(side)] = {0.0, 0.0, s.toe};
         }
-        humanoid[body::Joint::hips].y = s.leg_length();
-        humanoid.heel = s.heel;
-        skeleton = body::skeleton_of(humanoid);
+        built[body::Joint::hips].y = s.leg_length();
+        built.heel = s.heel;  // no joint: the skeleton's own humanoid guesses it
+        skeleton = body::skeleton_of(built);
         poser.emplace(*skeleton, body::map_humanoid(*skeleton));
+        humanoid = std::move(built);
       }
     }
     const std::filesystem::path prefix(o->prefix);
@@ -310,8 +323,8 @@ void add_walk_command(CLI::App& app) {
     if (whole_body && !o->path.empty() &&
         walk->count("--duration") + walk->count("--cycles") == 0) {
       // Along a path with no length given: to its end, and the sagittal files as long.
-      body_frames = write_body_walk(set, options, ground, *route, *skeleton, *poser, o->fps, 0,
-                                    o->prefix + ".body.bvh");
+      body_frames = write_body_walk(set, options, ground, *route, *humanoid, *skeleton, *poser,
+                                    o->fps, 0, o->prefix + ".body.bvh");
       o->duration = static_cast<double>(body_frames - 1) / o->fps;
     }
     gait::Walker walker(set, options, ground);
@@ -319,8 +332,8 @@ void add_walk_command(CLI::App& app) {
     const eval::Motion motion = o->duration > 0.0 ? eval::record(walker, o->duration, o->fps)
                                                   : eval::record_cycles(walker, o->cycles, o->fps);
     if (whole_body && body_frames == 0) {
-      body_frames = write_body_walk(set, options, ground, *route, *skeleton, *poser, o->fps,
-                                    motion.frames.size(), o->prefix + ".body.bvh");
+      body_frames = write_body_walk(set, options, ground, *route, *humanoid, *skeleton, *poser,
+                                    o->fps, motion.frames.size(), o->prefix + ".body.bvh");
     }
     io::write_file(o->prefix + ".csv",
                    [&motion](std::ostream& out) { io::write_walk_csv(out, motion); });

@@ -479,15 +479,34 @@ TEST(WalkCommand, WalksTheBodyOnAMocapSkeleton) {
   EXPECT_THAT(both.output, HasSubstr("give --skeleton or a body"));
 }
 
+TEST(WalkCommand, APathWalksAnyBodyAndStopsOnAStall) {
+  const std::filesystem::path route = scratch("line.csv");
+  std::ofstream(route) << "x,z\n0,0\n0,8\n";
+  // A heel the stature's proportions do not give: the body is the walk's.
+  const auto heel = run_program("walk --path " + shell_quoted(route) + " --heel 0.06 -o " +
+                                shell_quoted(scratch("heel")));
+  EXPECT_EQ(heel.status, 0) << heel.output;
+  // Down short treads the walk stalls: the body's walk stops there too and the command says where.
+  const auto stall =
+      run_program("walk --path " + shell_quoted(route) + " --terrain stairs:-0.10:0.20:6 -o " +
+                  shell_quoted(scratch("stall")));
+  EXPECT_NE(stall.status, 0);
+  EXPECT_THAT(stall.output, HasSubstr("the walk stalled"));
+  const auto radius = run_program("walk --corner-radius 2 -o " + shell_quoted(scratch("radius")));
+  EXPECT_NE(radius.status, 0);
+  EXPECT_THAT(radius.output, HasSubstr("--corner-radius rounds the corners of a --path"));
+}
+
 TEST(WalkCommand, ABadPathFileNamesTheLine) {
   const std::filesystem::path route = scratch("bad_path.csv");
-  std::ofstream(route) << "x,z\n0,0\n0,3\n0.1,0\n";  // turns back on itself at line 3
+  // Turns back on itself at its third point, on line 4 after a comment.
+  std::ofstream(route) << "x,z\n0,0\n  # out and back\n0,3\n0.1,0\n";
   const auto run = run_program("walk --path " + shell_quoted(route) + " -o " +
                                shell_quoted(scratch("bad_path")));
   EXPECT_NE(run.status, 0);
-  EXPECT_THAT(run.output, HasSubstr("bad_path.csv:3"));
+  EXPECT_THAT(run.output, HasSubstr("bad_path.csv:4"));
   EXPECT_THAT(run.output, HasSubstr("turns back on itself"));
-  std::ofstream(route) << "x,z\n0,0\nnan,3\n";
+  std::ofstream(route) << "x,z\n0,0\n1.5 2,3\n";  // a blank inside a number
   const auto nan = run_program("walk --path " + shell_quoted(route) + " -o " +
                                shell_quoted(scratch("bad_path")));
   EXPECT_NE(nan.status, 0);

@@ -30,6 +30,12 @@ TEST(Path, StraightByDefault) {
   EXPECT_DOUBLE_EQ(s.point.x, 0.0);
   EXPECT_DOUBLE_EQ(s.heading, 0.0);
   EXPECT_DOUBLE_EQ(path.at(-1.0).point.z, -1.0);
+  EXPECT_DOUBLE_EQ(path.at(NAN).point.z, 0.0);
+  const Path turn({0.0, 0.0}, 0.0, {{1.0, 0.5}});
+  for (const double far : {INFINITY, -INFINITY}) {
+    const PathSample beyond = turn.at(far);
+    EXPECT_TRUE(std::isfinite(beyond.point.x) && std::isfinite(beyond.point.z)) << far;
+  }
 }
 
 TEST(Path, ArcsAreExact) {

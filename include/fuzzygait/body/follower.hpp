@@ -2,7 +2,8 @@
 // path::Path. The walker walks the distance along the path (its x, with the terrain under the
 // path as its ground); the follower places the body in the world each frame:
 //   hips     on the path at the walker's pelvis distance, facing along it, tilted as the walker's
-//            pelvis; lowered only as far as the legs need to reach locked feet (pelvis_drop()).
+//            pelvis; lowered only as far as the legs need to reach their feet (pelvis_drop(), at
+//            most 0.1 of a leg: past that a foot falls short of where it is drawn to be).
 //   feet     on the path's ground frame at their own distance, step_width apart; a foot found
 //            planted is locked in the world until it lifts, so it never slides on a turn; a
 //            lifted foot eases from its stance frame onto the path's over the first part of its
@@ -52,7 +53,9 @@ class PathFollower {
                const FollowerOptions& = {}) = delete;  // a temporary path would be gone
 
   // Poses the body for the walker's state now: call it once a frame after advance(), at least
-  // once while each foot is planted. Deterministic: the same frames give the same poses.
+  // once while each foot is planted, with the walker it was made with (another walker's set plays
+  // no upper body). A walker whose time went back (started again) unlocks the feet.
+  // Deterministic: the same frames give the same poses.
   const BodyPose& update(const gait::Walker& walker) noexcept;
   const BodyPose& pose() const noexcept { return pose_; }
   // How far the hips were lowered below the walker's pelvis at the last update (m, >= 0).
@@ -70,8 +73,11 @@ class PathFollower {
   struct FootState {
     bool locked = false;
     bool releasing = false;
-    FootFrame frame;         // locked: the stance frame
-    double release_x = 0.0;  // the heel's x when it lifted
+    FootFrame frame;           // locked: the stance frame
+    FootFrame drawn;           // the frame the foot was drawn in at the last update
+    double release_x = 0.0;    // the heel's x when it lifted
+    double release_way = 0.0;  // from there to the swing's target then (m, at least 0.05)
+    double share = 0.0;        // how far the release has gone, 0 to 1, never back
     // Releasing: how far the stance frame lay off the path's frame at lift-off, in the path's
     // frame (m along, m to the left, radians).
     double offset_along = 0.0;
@@ -91,7 +97,9 @@ class PathFollower {
   FollowerOptions options_;
   double step_width_ = 0.0;
   std::array<FootState, 2> feet_{};
-  std::vector<fuzzy::Workspace> workspaces_;  // one per upper body controller
+  const gait::ControllerSet* set_;            // the walker's set, whose upper body plays
+  std::vector<fuzzy::Workspace> workspaces_;  // one per upper body controller of set_
+  double last_time_ = -1.0;                   // the walker's time at the last update
   BodyPose pose_{};
   double drop_ = 0.0;
 };

@@ -45,16 +45,16 @@ class Path {
   // kSmallestRadius, or the whole longer than kLongest.
   Path(GroundPoint start, double heading, std::vector<Piece> pieces);
   // Through the points in order, each corner rounded by a circular arc of `corner_radius`, or the
-  // largest that fits between its neighbours' corners (half of each leg). Throws
-  // std::invalid_argument naming the point when there are fewer than two points, a coordinate is
-  // not finite or beyond kLongest, two points coincide (within 1 mm), or a corner is so sharp
-  // that its arc would be tighter than kSmallestRadius.
+  // largest that fits (half of a leg between two corners, all of the first and the last leg).
+  // Throws std::invalid_argument naming the point when there are fewer than two points, a
+  // coordinate is not finite or beyond kLongest, two points coincide (within 1 mm), or a corner is
+  // so sharp that its arc would be tighter than kSmallestRadius.
   static Path polyline(std::span<const GroundPoint> points, double corner_radius = 1.0);
 
   double length() const { return length_; }
   std::span<const Piece> pieces() const { return pieces_; }
   // The curve at `distance` from the start; before the start and past the end it goes straight
-  // on along the end's heading. NaN gives the start.
+  // on along the end's heading (infinities as 4 x kLongest). NaN gives the start.
   PathSample at(double distance) const;
 
  private:

@@ -14,27 +14,38 @@ namespace fuzzygait::io {
 
 namespace {
 
-std::vector<std::string> cells_of(const std::string& line) {
+std::string_view trimmed(std::string_view text) {
+  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+  while (!text.empty() && blank(text.front()))
+    text.remove_prefix(1);
+  while (!text.empty() && blank(text.back()))
+    text.remove_suffix(1);
+  return text;
+}
+
+// The comma-separated cells of a line, each trimmed of blanks at its ends.
+std::vector<std::string> cells_of(std::string_view line) {
   std::vector<std::string> cells;
-  std::string cell;
-  for (const char c : line) {
-    if (c == ',') {
-      cells.push_back(cell);
-      cell.clear();
-    } else if (c != '\r' && c != ' ' && c != '\t') {
-      cell += c;
-    }
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = line.find(',', start);
+    cells.emplace_back(trimmed(line.substr(start, comma - start)));
+    if (comma == std::string_view::npos) return cells;
+    start = comma + 1;
   }
-  cells.push_back(cell);
-  return cells;
 }
 
 }  // namespace
 
 path::Path read_path_csv(std::istream& in, std::string_view source, double corner_radius) {
   const std::string where(source);
+  if (!std::isfinite(corner_radius) || corner_radius < path::Path::kSmallestRadius) {
+    throw std::invalid_argument("the corner radius must be at least " +
+                                std::to_string(path::Path::kSmallestRadius) + " m");
+  }
   std::string line;
-  if (!std::getline(in, line) || cells_of(line) != std::vector<std::string>{"x", "z"}) {
+  if (std::getline(in, line) && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a BOM
+  if (!in || cells_of(line) != std::vector<std::string>{"x", "z"}) {
     throw fuzzy::ParseError(where, 1, "expected the header 'x,z'");
   }
   std::vector<path::GroundPoint> points;
@@ -42,14 +53,15 @@ path::Path read_path_csv(std::istream& in, std::string_view source, double corne
   int number = 1;
   while (std::getline(in, line)) {
     ++number;
-    if (line.empty() || line == "\r" || line[0] == '#') continue;
-    const std::vector<std::string> cells = cells_of(line);
+    const std::string_view content = trimmed(line);
+    if (content.empty() || content.front() == '#') continue;
+    const std::vector<std::string> cells = cells_of(content);
     if (cells.size() != 2) throw fuzzy::ParseError(where, number, "expected two values 'x,z'");
     double xz[2] = {0.0, 0.0};
     for (std::size_t c = 0; c < 2; ++c) {
       const std::string column = std::string("column '") + (c == 0 ? "x" : "z") + "': ";
       const std::optional<double> value = fuzzy::parse_scalar(cells[c]);
-      if (!value || !std::isfinite(*value)) {
+      if (!value || !std::isfinite(*value) || cells[c].find_first_of(" \t") != std::string::npos) {
         throw fuzzy::ParseError(where, number,
                                 column + "'" + cells[c] + "' is not a finite number");
       }
@@ -70,7 +82,7 @@ path::Path read_path_csv(std::istream& in, std::string_view source, double corne
         throw fuzzy::ParseError(where, lines[point - 1], message);
       }
     }
-    throw fuzzy::ParseError(where, number, message);
+    throw std::invalid_argument(where + ": " + message);  // no point of it: the whole path
   }
 }
 

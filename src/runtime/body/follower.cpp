@@ -57,7 +57,7 @@ double smoothstep(double t) {
 
 PathFollower::PathFollower(const Humanoid& humanoid, const path::Path& path,
                            const gait::Walker& walker, const FollowerOptions& options)
-    : humanoid_(humanoid), path_(&path), options_(options) {
+    : humanoid_(humanoid), path_(&path), options_(options), set_(&walker.controllers()) {
   validate(humanoid_);
   auto check = [](const char* field, double value, double low, double high) {
     if (!std::isfinite(value) || value < low || value > high) {
@@ -105,7 +105,7 @@ double PathFollower::upper_body_angle(const gait::ControllerSet& set, gait::Uppe
                                       const gait::MetricValues& metrics) noexcept {
   const auto p = static_cast<std::size_t>(part);
   const auto& controller = set.upper_body[p];
-  if (!options_.upper_body || !controller) return 0.0;
+  if (!options_.upper_body || !controller || &set != set_) return 0.0;
   const double degrees = controller->evaluate(metrics, workspaces_[p]);
   return std::isfinite(degrees) ? degrees * (std::numbers::pi / 180.0) : 0.0;
 }
@@ -124,6 +124,8 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
   const Quat facing = yaw(at_hips.heading);
   // Each side turns forward by the answer to the other side's leg; the body turns right (heading
   // turns left +) as its left side comes forward.
+  if (walker.time() < last_time_) feet_ = {};  // started again: nothing stands where it stood
+  last_time_ = walker.time();
   const gait::ControllerSet& set = walker.controllers();
   const std::array<gait::MetricValues, 2> metrics = {leg_metrics(walker, 0),
                                                      leg_metrics(walker, 1)};
@@ -140,6 +142,7 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
   struct LegTarget {
     Vec3 ankle;
     Vec3 pole;
+    Vec3 forward;  // the foot's
     Quat foot;
     Quat toes;
     Vec3 hip_offset;
@@ -154,9 +157,17 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
     FootFrame frame = on_path;
     if (walker.in_contact(side)) {
       if (!foot_state.locked) {
+        // Landed: it stays where it is drawn now; still easing from its last stance frame, that
+        // is the frame it was drawn in, carried to this heel.
         foot_state.locked = true;
-        foot_state.releasing = false;
         foot_state.frame = on_path;
+        if (foot_state.releasing) {
+          const FootFrame& d = foot_state.drawn;
+          const Vec3 ahead = (points.heel.x - d.anchor) * forward_of(d.heading);
+          foot_state.frame = {
+              {d.origin.x + ahead.x, d.origin.z + ahead.z}, d.heading, points.heel.x};
+        }
+        foot_state.releasing = false;
       }
       frame = foot_state.frame;
     } else {
@@ -173,21 +184,26 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
         foot_state.locked = false;
         foot_state.releasing = true;
         foot_state.release_x = points.heel.x;
+        foot_state.release_way = std::max(
+            walker.state().legs[static_cast<std::size_t>(i)].target_x - points.heel.x, 0.05);
+        foot_state.share = 0.0;
       }
       if (foot_state.releasing) {
-        // The offset fades over the swing's first part; the foot follows the path meanwhile.
-        const double target = walker.state().legs[static_cast<std::size_t>(i)].target_x;
-        const double way = std::max(target - foot_state.release_x, 0.05);
-        const double share = smoothstep((points.heel.x - foot_state.release_x - kHeld * way) /
-                                        (way * (options_.swing_release - kHeld)));
-        if (share >= 1.0) foot_state.releasing = false;
-        const double keep = 1.0 - share;
+        // The offset fades over the swing's first part (never back, though the target moves);
+        // the foot follows the path meanwhile.
+        const double way = foot_state.release_way;
+        foot_state.share = std::max(
+            foot_state.share, smoothstep((points.heel.x - foot_state.release_x - kHeld * way) /
+                                         (way * (options_.swing_release - kHeld))));
+        if (foot_state.share >= 1.0) foot_state.releasing = false;
+        const double keep = 1.0 - foot_state.share;
         const Vec3 off = keep * foot_state.offset_along * forward_of(on_path.heading) +
                          keep * foot_state.offset_left * left_of(on_path.heading);
         frame.origin = {on_path.origin.x + off.x, on_path.origin.z + off.z};
         frame.heading = on_path.heading + keep * foot_state.offset_turn;
       }
     }
+    foot_state.drawn = frame;
     const Vec3 forward = forward_of(frame.heading);
     auto world = [&](rig::Point p) {
       return Vec3{frame.origin.x, 0.0, frame.origin.z} + (p.x - frame.anchor) * forward + p.y * kUp;
@@ -199,12 +215,15 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
     const rig::Point square = hl > 0.0 ? rig::Point{-hy / hl, hx / hl} : rig::Point{1.0, 0.0};
     const rig::LegOrientation o = rig::orientation(sagittal.pelvis_tilt, sagittal.legs[i]);
     const Quat heading = yaw(frame.heading);
-    legs[static_cast<std::size_t>(i)] = {world(points.ankle), square.x * forward + square.y * kUp,
-                                         heading * pitch_up(o.foot), heading * pitch_up(o.toes),
+    legs[static_cast<std::size_t>(i)] = {world(points.ankle),
+                                         square.x * forward + square.y * kUp,
+                                         forward,
+                                         heading * pitch_up(o.foot),
+                                         heading * pitch_up(o.toes),
                                          rotate(pelvis, humanoid_[upper_leg(side)])};
   }
 
-  // Lower the hips as far as the farther locked foot needs.
+  // Lower the hips as far as the foot farther out of reach needs, at most 0.1 of a leg.
   double drop = 0.0;
   for (const LegTarget& leg : legs) {
     const Vec3 hip = hips_before_drop + leg.hip_offset;
@@ -253,7 +272,7 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
     const double out =
         std::sqrt(std::max(segments.thigh * segments.thigh - from_hip * from_hip, 0.0));
     Vec3 pole = normalized(leg.pole - dot(leg.pole, along) * along);
-    if (length(pole) == 0.0) pole = normalized(cross(along, cross(leg.pole, along)));
+    if (length(pole) == 0.0) pole = normalized(leg.forward - dot(leg.forward, along) * along);
     const Vec3 knee = hip + from_hip * along + out * pole;
     const Vec3 ankle = hip + distance * along;
     pose_.rotation[index(upper_leg(side))] = limb_rotation(normalized(knee - hip), leg.pole);

@@ -136,6 +136,7 @@ Path Path::polyline(std::span<const GroundPoint> points, double corner_radius) {
 
 PathSample Path::at(double distance) const {
   if (std::isnan(distance)) distance = 0.0;
+  distance = std::clamp(distance, -4.0 * kLongest, 4.0 * kLongest);  // infinities go straight on
   if (distance < 0.0 || pieces_.empty()) {
     const Start& s = starts_.front();
     const double u = pieces_.empty() ? distance : std::min(distance, 0.0);
