@@ -11,7 +11,8 @@ and right thighs' inclination (hip -> knee, same plane), the pelvis's rotation (
 right to the left hip joint against the walk's left, about the vertical; left hip forward +) and
 the thorax's (the same for the shoulder joints). Prints each figure's range, the share of the
 cycle where it peaks, and the straight-line fit of the shoulder and of the pelvis's rotation to a
-thigh, which is what the body controllers in controllers/*/body_*.fll read. numpy only.
+thigh, which is what the body controllers in controllers/*/upper_body_*.fll read; then the frontal
+plane (see frontal()). numpy only.
 """
 import glob, math, os, sys
 import numpy as np
@@ -104,6 +105,32 @@ def measure(path):
         v = at(a) - at(b)
         return np.degrees(np.arctan2(v @ forward, v @ left))
 
+    def knee(hip, knee_joint, ankle):  # flexion: 180 deg less the angle at the knee
+        a, b = at(hip) - at(knee_joint), at(ankle) - at(knee_joint)
+        c = np.sum(a * b, 1) / np.linalg.norm(a, axis=1) / np.linalg.norm(b, axis=1)
+        return 180.0 - np.degrees(np.arccos(np.clip(c, -1, 1)))
+
+    def obliquity():  # the left hip joint above the right, in the frontal plane, left up +
+        v = at("LeftUpLeg") - at("RightUpLeg")
+        return np.degrees(np.arctan2(v @ up, v @ left))
+
+    def adduction(hip, knee_joint, side):  # the thigh towards the midline, in the pelvis's frame
+        pelvis_left = at("LeftUpLeg") - at("RightUpLeg")
+        pelvis_left /= np.linalg.norm(pelvis_left, axis=1)[:, None]
+        thigh = at(knee_joint) - at(hip)
+        thigh /= np.linalg.norm(thigh, axis=1)[:, None]
+        return np.degrees(np.arcsin(np.clip(-side * np.sum(thigh * pelvis_left, 1), -1, 1)))
+
+    def sway():  # the hips' centre to the left of the walk's straight line, over leg length
+        centre = 0.5 * (at("LeftUpLeg") + at("RightUpLeg"))
+        lateral = centre @ left
+        t = np.arange(len(lateral))
+        lateral = lateral - np.polyval(np.polyfit(t, lateral, 1), t)
+        return 100.0 * lateral / leg_length
+
+    hip_height = 0.5 * (at("LeftUpLeg") + at("RightUpLeg")) @ up
+    foot_low = np.minimum(at("LeftToeBase") @ up, at("RightToeBase") @ up)
+    leg_length = np.median(hip_height - foot_low)
     upper = at("LeftForeArm") - at("LeftArm")
     fore = at("LeftHand") - at("LeftForeArm")
     cosine = np.sum(upper * fore, 1) / np.linalg.norm(upper, axis=1) / np.linalg.norm(fore, axis=1)
@@ -114,6 +141,11 @@ def measure(path):
         "right_thigh": inclination("RightUpLeg", "RightLeg"),
         "pelvis_rotation": about_vertical("LeftUpLeg", "RightUpLeg"),
         "thorax_rotation": about_vertical("LeftArm", "RightArm"),
+        "left_knee": knee("LeftUpLeg", "LeftLeg", "LeftFoot"),
+        "right_knee": knee("RightUpLeg", "RightLeg", "RightFoot"),
+        "pelvis_obliquity": obliquity(),
+        "left_hip_adduction": adduction("LeftUpLeg", "LeftLeg", 1.0),
+        "pelvis_sway": sway(),
     }
     # Left heel strikes: the left thigh's most forward inclinations, a cycle apart.
     thigh = series["left_thigh"]
@@ -160,6 +192,43 @@ def main():
            f[:, 2].mean(), f[:, 3].mean(), f[:, 7].mean(), f[:, 8].mean()))
     print("mean: elbow = %.2f x left thigh %+.1f; thorax rotation = %.2f x right thigh %+.1f" %
           (f[:, 9].mean(), f[:, 10].mean(), f[:, 11].mean(), f[:, 12].mean()))
+    frontal(clips)
+
+
+def ramp(x, a, b):  # 0 at a, 1 at b, clamped
+    return np.clip((x - a) / (b - a), 0.0, 1.0)
+
+
+def frontal(clips):
+    """The frontal plane: pelvis obliquity, hip adduction and the pelvis's sway, and the number
+    of upper_body_pelvis_sway.fll (the pelvis moves over a side whose knee is straight, below 30
+    deg, and whose thigh is near vertical: each side's answer is that membership times the fitted
+    percent of the leg's length). The obliquity printed here is the CMU root's roll: the swing
+    side drops, as Schwartz et al. 2008's, but it is lowest at the swing's end where theirs is
+    lowest at its start (16 % after the other foot's contact); upper_body_pelvis_obliquity.fll
+    follows Schwartz's, the bound of issue 30 (tests/body/follower_test.cpp)."""
+    print("\nclip   obliquity range / left up most  left hip adduction  sway, % of leg length"
+          " / most left")
+    s_x, s_y = [], []
+    curves = {"pelvis_obliquity": [], "left_hip_adduction": [], "pelvis_sway": []}
+    for clip in clips:
+        mean, count, speed, series = measure(clip)
+        o, a, w = mean["pelvis_obliquity"], mean["left_hip_adduction"], mean["pelvis_sway"]
+        for k in curves:
+            curves[k].append(mean[k])
+        print("%s %5.1f..%4.1f at %3.0f %%          %5.1f..%4.1f        %5.2f..%4.2f at %3.0f %%" % (
+            os.path.basename(clip)[:-4], o.min(), o.max(), 100 * np.argmax(o) / 50, a.min(),
+            a.max(), w.min(), w.max(), 100 * np.argmax(w) / 50))
+        kl, kr = series["left_knee"], series["right_knee"]
+        over = lambda k, thigh: ramp(-k, -30, 0) * ramp(31 - np.abs(thigh), 0, 31)
+        s_x.append(over(kl, series["left_thigh"]) - over(kr, series["right_thigh"]))
+        s_y.append(series["pelvis_sway"])
+    c_s = np.linalg.lstsq(np.concatenate(s_x)[:, None], np.concatenate(s_y), rcond=None)[0][0]
+    r_s = np.corrcoef(np.concatenate(s_x), np.concatenate(s_y))[0, 1]
+    print("fit: pelvis sway = %.2f %% of leg length x (left over - right over) (r %.2f)" %
+          (c_s, r_s))
+    for k, v in curves.items():
+        print("mean %s every 10 %%: %s" % (k, " ".join("%5.1f" % x for x in np.mean(v, 0)[::5])))
 
 
 if __name__ == "__main__":

@@ -1,9 +1,10 @@
 // The whole body walking a path: poses a Humanoid from a walker's sagittal walk, bent onto a
 // path::Path. The walker walks the distance along the path (its x, with the terrain under the
 // path as its ground); the follower places the body in the world each frame:
-//   hips     on the path at the walker's pelvis distance, facing along it, tilted as the walker's
-//            pelvis; lowered only as far as the legs need to reach their feet (pelvis_drop(), at
-//            most 0.1 of a leg: past that a foot falls short of where it is drawn to be).
+//   hips     on the path at the walker's pelvis distance (but for the sway), facing along it,
+//            tilted as the walker's pelvis; lowered only as far as the legs need to reach their
+//            feet (pelvis_drop(), at most 0.1 of a leg: past that a foot falls short of where it
+//            is drawn to be).
 //   feet     on the path's ground frame at their own distance, step_width apart; a foot found
 //            planted is locked in the world until it lifts, so it never slides on a turn; a
 //            lifted foot eases from its stance frame onto the path's over the first part of its
@@ -13,9 +14,10 @@
 //            (along the foot's heading); thigh and shank keep their lengths.
 //   upper    the walker's controller set's upper body (ControllerSet::upper_body): the arms
 //   body     swing at shoulder and elbow against their own legs, the pelvis and the chest turn
-//            about the vertical with the legs, the chest against the pelvis; a set without them
-//            hangs the arms and keeps pelvis and chest square to the path. The trunk stays
-//            upright; the head turns to the path look_ahead metres ahead.
+//            about the vertical with the legs, the chest against the pelvis; the pelvis rolls
+//            (obliquity) and sways sideways over the feet; a set without them hangs the arms and
+//            keeps pelvis and chest square to the path, over it. The trunk stays upright; the
+//            head turns to the path look_ahead metres ahead.
 // On a straight path with step_width equal to the hip width the legs are the walker's to
 // rounding.
 #pragma once
@@ -88,7 +90,10 @@ class PathFollower {
   FootFrame path_frame(double x, double lateral) const noexcept;
   // The metrics an upper body controller reads of leg `leg` (the ground's left 0: refused).
   static gait::MetricValues leg_metrics(const gait::Walker& walker, int leg) noexcept;
-  // The set's answer for `part` from a leg's metrics, radians; 0 without a controller.
+  // The set's answer for `part` from a leg's metrics, as its controller gives it; 0 without one.
+  double upper_body_answer(const gait::ControllerSet& set, gait::UpperBody part,
+                           const gait::MetricValues& metrics) noexcept;
+  // The same for an angle, radians.
   double upper_body_angle(const gait::ControllerSet& set, gait::UpperBody part,
                           const gait::MetricValues& metrics) noexcept;
 

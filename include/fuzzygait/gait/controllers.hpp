@@ -61,14 +61,24 @@ inline fuzzy::Workspace& workspace_at(std::vector<fuzzy::Workspace>& workspaces,
 }
 }  // namespace detail
 
-// The upper body's controllers (the manifest's "upper_body"): each answers an angle in degrees
-// (not a velocity: the upper body follows the legs) from one leg's metrics. The shoulder (the
-// upper arm's inclination forward of the vertical) and the elbow (flexion) read their own side's
-// leg; each side's pelvis and thorax turn (forward +) read the other side's leg, and the body
-// turns by the left's minus the right's.
-enum class UpperBody : std::uint8_t { Shoulder, Elbow, PelvisRotation, ThoraxRotation };
-inline constexpr int kUpperBodyCount = 4;
-// "shoulder", "elbow", "pelvis_rotation", "thorax_rotation".
+// The upper body's controllers (the manifest's "upper_body"): each answers from one leg's metrics
+// (not a velocity: the upper body follows the legs). The shoulder (the upper arm's inclination
+// forward of the vertical, deg) and the elbow (flexion, deg) read their own side's leg; each
+// side's pelvis and thorax turn (forward +, deg) read the other side's leg, and the body turns by
+// the left's minus the right's. The frontal plane reads each side's own leg: pelvis_obliquity
+// (how far this side of the pelvis rises, deg; the pelvis rolls by the left's minus the right's)
+// and pelvis_sway (how far the pelvis moves towards this side, percent of the leg's length; it
+// moves by the left's minus the right's).
+enum class UpperBody : std::uint8_t {
+  Shoulder,
+  Elbow,
+  PelvisRotation,
+  ThoraxRotation,
+  PelvisObliquity,
+  PelvisSway
+};
+inline constexpr int kUpperBodyCount = 6;
+// "shoulder", "elbow", "pelvis_rotation", "thorax_rotation", "pelvis_obliquity", "pelvis_sway".
 std::string_view upper_body_name(UpperBody part);
 
 // The kinds of ground a controller set may have words for (the manifest's "terrain").

@@ -16,6 +16,7 @@ namespace {
 
 constexpr Vec3 kUp{0.0, 1.0, 0.0};
 constexpr Vec3 kLeft{1.0, 0.0, 0.0};
+constexpr Vec3 kForward{0.0, 0.0, 1.0};
 
 Vec3 forward_of(double heading) {
   return {std::sin(heading), 0.0, std::cos(heading)};
@@ -101,13 +102,18 @@ gait::MetricValues PathFollower::leg_metrics(const gait::Walker& walker, int leg
   return metrics;
 }
 
-double PathFollower::upper_body_angle(const gait::ControllerSet& set, gait::UpperBody part,
-                                      const gait::MetricValues& metrics) noexcept {
+double PathFollower::upper_body_answer(const gait::ControllerSet& set, gait::UpperBody part,
+                                       const gait::MetricValues& metrics) noexcept {
   const auto p = static_cast<std::size_t>(part);
   const auto& controller = set.upper_body[p];
   if (!options_.upper_body || !controller || &set != set_) return 0.0;
-  const double degrees = controller->evaluate(metrics, workspaces_[p]);
-  return std::isfinite(degrees) ? degrees * (std::numbers::pi / 180.0) : 0.0;
+  const double answer = controller->evaluate(metrics, workspaces_[p]);
+  return std::isfinite(answer) ? answer : 0.0;
+}
+
+double PathFollower::upper_body_angle(const gait::ControllerSet& set, gait::UpperBody part,
+                                      const gait::MetricValues& metrics) noexcept {
+  return upper_body_answer(set, part, metrics) * (std::numbers::pi / 180.0);
 }
 
 PathFollower::FootFrame PathFollower::path_frame(double x, double lateral) const noexcept {
@@ -132,11 +138,17 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
   auto turn = [&](gait::UpperBody part) {
     return upper_body_angle(set, part, metrics[0]) - upper_body_angle(set, part, metrics[1]);
   };
-  const Quat pelvis =
-      facing * yaw(turn(gait::UpperBody::PelvisRotation)) * axis_angle(kLeft, sagittal.pelvis_tilt);
-  const Quat thorax = facing * yaw(turn(gait::UpperBody::ThoraxRotation));
-  const Vec3 hips_before_drop{at_hips.point.x, sagittal.pelvis.y, at_hips.point.z};
+  // The frontal plane: the left side's answer less the right's, each from its own leg.
+  const double obliquity = turn(gait::UpperBody::PelvisObliquity);  // left side up +
   const rig::Segments segments = humanoid_.segments();
+  const double sway = (upper_body_answer(set, gait::UpperBody::PelvisSway, metrics[0]) -
+                       upper_body_answer(set, gait::UpperBody::PelvisSway, metrics[1])) *
+                      0.01 * segments.leg_length();  // to the left +, m
+  const Quat pelvis = facing * yaw(turn(gait::UpperBody::PelvisRotation)) *
+                      axis_angle(kForward, obliquity) * axis_angle(kLeft, sagittal.pelvis_tilt);
+  const Quat thorax = facing * yaw(turn(gait::UpperBody::ThoraxRotation));
+  const Vec3 hips_before_drop =
+      Vec3{at_hips.point.x, sagittal.pelvis.y, at_hips.point.z} + sway * left_of(at_hips.heading);
   const double reach = segments.thigh + segments.shank;
 
   struct LegTarget {

@@ -223,8 +223,10 @@ void read_upper_body(const Value& upper_body, const std::map<std::string, std::s
       if (upper_body_name(static_cast<UpperBody>(p)) == key) part = p;
     }
     if (part < 0) {
-      throw std::invalid_argument(where(manifest_source, file) + "unknown upper body part '" + key +
-                                  "' (shoulder, elbow, pelvis_rotation or thorax_rotation)");
+      throw std::invalid_argument(
+          where(manifest_source, file) + "unknown upper body part '" + key +
+          "' (shoulder, elbow, pelvis_rotation, thorax_rotation, pelvis_obliquity or "
+          "pelvis_sway)");
     }
     if (file.kind != Value::Kind::String) {
       throw std::invalid_argument(where(manifest_source, file) + "upper body part '" + key +
@@ -444,7 +446,7 @@ std::string_view slot_name(int slot) {
 
 std::string_view upper_body_name(UpperBody part) {
   static constexpr std::array<std::string_view, kUpperBodyCount> kNames = {
-      "shoulder", "elbow", "pelvis_rotation", "thorax_rotation"};
+      "shoulder", "elbow", "pelvis_rotation", "thorax_rotation", "pelvis_obliquity", "pelvis_sway"};
   return kNames.at(static_cast<std::size_t>(part));
 }
 

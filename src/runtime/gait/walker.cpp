@@ -539,6 +539,9 @@ void Walker::warm_up(double seconds) {
   const terrain::Terrain level =
       terrain::Terrain::polyline({{-1e6, ground->height(0.0)}, {1e6, ground->height(0.0)}});
   terrain_ = &level;
+  // Run indices name runs of the ground in use: the level ground has one.
+  for (LegState& l : state_.legs)
+    l.target_run = 0;
   for (double t = 0.0; t < seconds; t += time_step_)
     WalkerStages::step(*this, time_step_);
   terrain_ = ground;
@@ -552,6 +555,7 @@ void Walker::warm_up(double seconds) {
     l.step_from_x -= shift;
     l.swing_start -= state_.time;
     l.strike_time -= state_.time;
+    l.target_run = ground->run_at(l.target_x);
   }
   state_.time = 0.0;
 }
