@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzzygait/gait/crowd.hpp"
 #include "fuzzygait/gait/walker.hpp"
 
 namespace fuzzygait::body {
@@ -357,6 +358,47 @@ TEST(PathFollower, RandomPathsOverRandomGround) {
   }
   EXPECT_EQ(walked, 200);
   RecordProperty("walks_whose_walker_slips_over_1mm", slipping);
+}
+
+// A crowd's characters are walkers (Crowd::operator[]): a follower each poses them on their own
+// paths, on two threads, to the bit of lone walkers on those paths.
+TEST(PathFollower, PosesACrowdsCharactersAsLoneWalkers) {
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  std::vector<Humanoid> bodies;
+  std::vector<path::Path> paths;
+  std::vector<gait::WalkerOptions> characters;
+  for (int i = 0; i < 6; ++i) {
+    bodies.push_back(humanoid_from_stature(1.5 + 0.1 * i));
+    gait::WalkerOptions options;
+    options.segments = bodies.back().segments();
+    options.speed = 0.9 + 0.15 * i;
+    options.event_capacity = 0;
+    characters.push_back(options);
+    const double bend = (i % 2 == 0 ? 1.0 : -1.0) / (1.0 + i);
+    paths.push_back(
+        path::Path({0.1 * i, -0.2 * i}, 0.3 * i, {{2.0, 0.0}, {3.0, bend}, {4.0, 0.0}}));
+  }
+  gait::CrowdOptions on_two;
+  on_two.threads = 2;
+  gait::Crowd crowd(default_set(), flat, characters, on_two);
+  std::vector<PathFollower> crowd_followers, lone_followers;
+  std::vector<gait::Walker> lone;
+  lone.reserve(characters.size());
+  for (std::size_t i = 0; i < characters.size(); ++i) {
+    lone.emplace_back(default_set(), characters[i], flat);
+    crowd_followers.emplace_back(bodies[i], paths[i], crowd[i]);
+    lone_followers.emplace_back(bodies[i], paths[i], lone[i]);
+  }
+  for (int frame = 0; frame < 300; ++frame) {
+    ASSERT_TRUE(crowd.advance(kFrame));
+    for (std::size_t i = 0; i < characters.size(); ++i) {
+      ASSERT_TRUE(lone[i].advance(kFrame));
+      const BodyPose& a = crowd_followers[i].update(crowd[i]);
+      const BodyPose& b = lone_followers[i].update(lone[i]);
+      ASSERT_EQ(std::memcmp(&a, &b, sizeof(BodyPose)), 0)
+          << "character " << i << ", frame " << frame;
+    }
+  }
 }
 
 TEST(PathFollower, RefusesAWalkerOfAnotherBody) {
