@@ -1,6 +1,7 @@
 // `fuzzygait train`: learns a controller set from motion capture clips (learn::train) and writes
 // it with a report: the error per joint before and after, and each clip's curves before and after
 // against the clip. Ctrl-C stops the training and writes the best set found so far.
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,6 +21,7 @@
 #include "fuzzygait/io/mocap.hpp"
 #include "fuzzygait/learn/network.hpp"
 #include "fuzzygait/learn/train.hpp"
+#include "fuzzygait/learn/upper_body.hpp"
 #include "fuzzygait/plot/walk_plots.hpp"
 
 namespace fuzzygait::cli {
@@ -135,7 +138,67 @@ std::vector<std::string> moved_values(const gait::ControllerSet& base,
     }
     lines.push_back(line);
   }
+  for (int p = 0; p < gait::kUpperBodyCount; ++p) {
+    const auto& a = base.upper_body[static_cast<std::size_t>(p)];
+    const auto& b = trained.upper_body[static_cast<std::size_t>(p)];
+    if (!a || !b) continue;
+    const auto& was = a->engine().outputs;
+    const auto& now = b->engine().outputs;
+    if (was.size() != 1 || now.size() != 1 || was[0].terms.size() != now[0].terms.size()) continue;
+    for (std::size_t t = 0; t < now[0].terms.size(); ++t) {
+      const fuzzy::Term& old_term = was[0].terms[t];
+      const fuzzy::Term& new_term = now[0].terms[t];
+      if (old_term.parameters == new_term.parameters || old_term.parameters.size() != 1 ||
+          new_term.parameters.size() != 1) {
+        continue;
+      }
+      const std::string name = "upper_body_" +
+                               std::string(gait::upper_body_name(static_cast<gait::UpperBody>(p))) +
+                               "." + new_term.name;
+      char line[200];
+      std::snprintf(line, sizeof line, "%-40s %10.4g -> %.4g", name.c_str(), old_term.parameters[0],
+                    new_term.parameters[0]);
+      lines.push_back(line);
+    }
+  }
   return lines;
+}
+
+// The upper body's fit: per part, each clip's RMSE before and after (report text; JSON into
+// `json`), and the clips that taught it nothing.
+std::string upper_body_report(const std::optional<learn::UpperBodyFit>& fit,
+                              const std::vector<learn::UpperBodyClip>& clips,
+                              const std::vector<std::string>& without,
+                              nlohmann::ordered_json& json) {
+  std::string text = "\nupper body";
+  nlohmann::ordered_json j;
+  if (!fit) {
+    text += ": not fitted (no clip shows arms, or the set has no upper body)\n";
+  } else {
+    text += " (RMSE against each clip, before -> after; the sway in % of the leg):\n";
+    for (int p = 0; p < gait::kUpperBodyCount; ++p) {
+      const auto i = static_cast<std::size_t>(p);
+      if (!fit->fitted[i]) continue;
+      const std::string part(gait::upper_body_name(static_cast<gait::UpperBody>(p)));
+      text += "  " + part + ":";
+      nlohmann::ordered_json per_clip = nlohmann::json::array();
+      for (std::size_t c = 0; c < clips.size(); ++c) {
+        text += " " + clips[c].name + " " + fixed(fit->rmse_before[i][c], 2) + " -> " +
+                fixed(fit->rmse_after[i][c], 2);
+        per_clip.push_back({{"clip", clips[c].name},
+                            {"rmse_before", fit->rmse_before[i][c]},
+                            {"rmse_after", fit->rmse_after[i][c]}});
+      }
+      text += "\n";
+      j[part] = per_clip;
+    }
+    for (const std::string& note : fit->notes)
+      text += "  " + note + "\n";
+  }
+  for (const std::string& w : without)
+    text += "  no upper body in " + w + "\n";
+  json["upper_body"] = j;
+  return text;
 }
 
 }  // namespace
@@ -210,8 +273,16 @@ void add_train_command(CLI::App& app) {
     const learn::SetNetwork check(base);  // every slot of the partition shape
     const io::ClipOptions reading = clip_options(o->reading);
     std::vector<learn::TrainClip> clips;
+    // What each clip shows of the arms, pelvis and chest, for the set's upper body.
+    std::vector<std::optional<learn::UpperBodySeries>> upper_bodies;
+    std::vector<std::string> no_upper_body;
+    clips.reserve(o->clips.size());
     for (const std::string& path : o->clips) {
-      io::CapturedClip clip = io::read_clip(path, reading);
+      const io::BvhClip bvh = io::read_bvh_file(path);
+      io::CapturedClip clip = io::analyse_clip(bvh, path, reading);
+      std::string why;
+      upper_bodies.push_back(learn::capture_upper_body(bvh, clip, &why));
+      if (!upper_bodies.back()) no_upper_body.push_back(clip_name(path) + ": " + why);
       clips.push_back(
           learn::make_train_clip(clip_name(path), std::move(clip.motion), std::move(clip.ground)));
       const learn::TrainClip& c = clips.back();
@@ -274,8 +345,19 @@ void add_train_command(CLI::App& app) {
     std::signal(SIGINT, previous);
     if (result.stopped) std::cerr << "stopped: writing the best set found so far\n";
 
-    // The set, named, with the clips' body and step (their means).
+    // The set, named, with the clips' body and step (their means), and its upper body fitted to
+    // the clips that show one.
     gait::ControllerSet trained = result.set;
+    std::vector<learn::UpperBodyClip> upper_clips;
+    for (std::size_t k = 0; k < clips.size(); ++k) {
+      if (upper_bodies[k]) upper_clips.push_back({clips[k].name, &clips[k], *upper_bodies[k]});
+    }
+    std::optional<learn::UpperBodyFit> upper_fit;
+    if (!upper_clips.empty() && std::any_of(trained.upper_body.begin(), trained.upper_body.end(),
+                                            [](const auto& c) { return c.has_value(); })) {
+      upper_fit = learn::fit_upper_body(trained, upper_clips);
+      trained.upper_body = upper_fit->set.upper_body;
+    }
     const std::filesystem::path folder(o->output);
     trained.name = o->name.empty() ? folder.filename().string() : o->name;
     if (trained.name.empty()) trained.name = "trained";
@@ -333,6 +415,7 @@ void add_train_command(CLI::App& app) {
       written.push_back(picture.string());
     }
     json["clips"] = per_clip;
+    text += upper_body_report(upper_fit, upper_clips, no_upper_body, json);
     text += "\n" + checks(trained, clips_body, o->check_starts, json);
     if (!result.added.empty()) {
       text += "\nstructure added (the base's rules could not follow the clips):\n";

@@ -331,3 +331,35 @@ TEST(ManifestBody, IsRefusedWithTheLineAndFieldWhenIncomplete) {
 
 }  // namespace
 }  // namespace fuzzygait
+
+namespace fuzzygait {
+namespace {
+
+// Two walks at nearby paces show a step, not how it grows with the pace: fitting a slope to them
+// once asked for a step of 0.07 leg lengths at a stroll, a stride the loader refuses, so the
+// trained set could not be walked. The fit shifts the stride instead; across a wide spread of
+// paces it fits the slope too; every result passes the loader's check.
+TEST(FitStride, NearbyPacesShiftTheStrideAndEveryResultLoads) {
+  const gait::ControllerSet base = gait::ControllerSet::builtin("default");
+  const std::vector<learn::StridePoint> nearby = {{0.40, 0.80, 1.0}, {0.43, 0.86, 1.0}};
+  const gait::ControllerSet shifted = learn::fit_stride(base, nearby);
+  EXPECT_EQ(shifted.stride_problem(), "");
+  // The shift puts the stride through the walks' mean step.
+  const double mean_error =
+      0.5 * (shifted.step_at_pace(0.40) - 0.80) + 0.5 * (shifted.step_at_pace(0.43) - 0.86);
+  EXPECT_NEAR(mean_error, 0.0, 0.01);
+  // The slope of two close points is steep: it is not taken.
+  const double base_rise = base.step_at_pace(0.8) - base.step_at_pace(0.15);
+  EXPECT_NEAR(shifted.step_at_pace(0.8) - shifted.step_at_pace(0.15), base_rise, 0.02);
+  const std::vector<learn::StridePoint> spread = {{0.25, 0.55, 1.0}, {0.55, 0.95, 1.0}};
+  const gait::ControllerSet sloped = learn::fit_stride(base, spread);
+  EXPECT_EQ(sloped.stride_problem(), "");
+  EXPECT_NEAR(sloped.step_at_pace(0.25), 0.55, 0.05);
+  EXPECT_NEAR(sloped.step_at_pace(0.55), 0.95, 0.05);
+  // A stride no fit can keep loadable is left as it was.
+  const std::vector<learn::StridePoint> tiny = {{0.40, 0.02, 1.0}};
+  EXPECT_EQ(learn::fit_stride(base, tiny).stride_problem(), "");
+}
+
+}  // namespace
+}  // namespace fuzzygait

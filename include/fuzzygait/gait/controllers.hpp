@@ -161,6 +161,10 @@ struct ControllerSet {
   // The stride's step (leg lengths) at this pace, and the pace of this step (its inverse, clamped
   // to the stride's pace range). Both need a stride.
   double step_at_pace(double pace) const;
+  // Why the stride relation cannot be walked by speed: its step does not rise with the pace over
+  // the input's range, or leaves 0.1 to 2 leg lengths there (the loader refuses such a set).
+  // Empty when it can, or when the set has none.
+  std::string stride_problem() const;
   double pace_at_step(double step) const;
   // The paces the stride is written for (its input's range).
   double slowest_pace() const;

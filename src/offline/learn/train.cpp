@@ -378,6 +378,7 @@ gait::ControllerSet fit_stride(const gait::ControllerSet& set,
   if (points.empty()) throw std::invalid_argument("fit_stride: no points to fit");
   // Weighted least squares of step = a + b v(pace), v the stride as it is.
   double sw = 0.0, sv = 0.0, ss = 0.0, svv = 0.0, svs = 0.0;
+  double slowest = points.front().pace, fastest = points.front().pace;
   for (const StridePoint& p : points) {
     const double v = set.step_at_pace(p.pace);
     sw += p.weight;
@@ -385,24 +386,37 @@ gait::ControllerSet fit_stride(const gait::ControllerSet& set,
     ss += p.weight * p.step;
     svv += p.weight * v * v;
     svs += p.weight * v * p.step;
+    slowest = std::min(slowest, p.pace);
+    fastest = std::max(fastest, p.pace);
   }
-  const double spread = svv - sv * sv / sw;
-  double b = 1.0;
-  if (spread > 1e-9 * std::max(1.0, svv)) b = (svs - sv * ss / sw) / spread;
-  if (!(b > 0.0)) {
-    throw std::invalid_argument(
-        "fit_stride: the walks' steps shrink as their pace grows; no stride fits them");
-  }
-  const double a = (ss - b * sv) / sw;
-  fuzzy::Engine engine = set.stride->engine();
-  for (fuzzy::Term& t : engine.outputs.at(0).terms) {
-    if (t.kind == fuzzy::TermKind::Constant) {
-      t.parameters[0] = detail::round_significant(a + b * t.parameters[0], 3);
+  auto scaled = [&](double a, double b) {
+    fuzzy::Engine engine = set.stride->engine();
+    for (fuzzy::Term& t : engine.outputs.at(0).terms) {
+      if (t.kind == fuzzy::TermKind::Constant) {
+        t.parameters[0] = detail::round_significant(a + b * t.parameters[0], 3);
+      }
     }
+    gait::ControllerSet fitted = set;
+    fitted.stride.emplace(std::move(engine), set.stride->source());
+    return fitted;
+  };
+  // Walks at paces this close together show a step, not how it grows: the slope is fitted only
+  // across a wider spread, and a slope that makes a stride the loader refuses (two walks at
+  // nearby paces can ask for a step that vanishes at a stroll) falls back to the shift alone.
+  constexpr double kPaceSpreadForSlope = 0.1;
+  const double spread = svv - sv * sv / sw;
+  if (fastest - slowest >= kPaceSpreadForSlope && spread > 1e-9 * std::max(1.0, svv)) {
+    const double b = (svs - sv * ss / sw) / spread;
+    if (!(b > 0.0)) {
+      throw std::invalid_argument(
+          "fit_stride: the walks' steps shrink as their pace grows; no stride fits them");
+    }
+    gait::ControllerSet fitted = scaled((ss - b * sv) / sw, b);
+    if (fitted.stride_problem().empty()) return fitted;
   }
-  gait::ControllerSet fitted = set;
-  fitted.stride.emplace(std::move(engine), set.stride->source());
-  return fitted;
+  gait::ControllerSet shifted = scaled((ss - sv) / sw, 1.0);
+  if (shifted.stride_problem().empty()) return shifted;
+  return set;
 }
 
 TrainResult train(const gait::ControllerSet& base, std::span<const TrainClip> clips,

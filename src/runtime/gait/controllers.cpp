@@ -279,22 +279,8 @@ void read_stride(const Value& stride, const std::map<std::string, std::string>& 
                                 number_text(pace.minimum) + " " + number_text(pace.maximum));
   }
   set.stride.emplace(std::move(c));
-  // People's steps lengthen with their pace: a stride that does not would make a speed ask for two
-  // steps, or none.
-  constexpr int kSamples = 200;
-  double before = set.step_at_pace(pace.minimum);
-  for (int i = 1; i <= kSamples; ++i) {
-    const double p = pace.minimum + (pace.maximum - pace.minimum) * i / kSamples;
-    const double step = set.step_at_pace(p);
-    if (!(step > before) || !(step >= 0.1 && step <= 2.0)) {
-      throw std::invalid_argument(
-          path +
-          ": the step must rise with the pace and lie between 0.1 and 2 leg lengths; at "
-          "pace " +
-          number_text(p, 3) + " it is " + number_text(step, 4) + " after " +
-          number_text(before, 4));
-    }
-    before = step;
+  if (const std::string problem = set.stride_problem(); !problem.empty()) {
+    throw std::invalid_argument(path + ": " + problem);
   }
 }
 
@@ -442,6 +428,26 @@ double ControllerSet::landing_knee(const MetricValues& metrics) const {
 
 std::string_view slot_name(int slot) {
   return kSlotNames.at(static_cast<std::size_t>(slot));
+}
+
+std::string ControllerSet::stride_problem() const {
+  if (!stride) return {};
+  // People's steps lengthen with their pace: a stride that does not would make a speed ask for two
+  // steps, or none.
+  const fuzzy::InputVariable& pace = stride->engine().inputs.front();
+  constexpr int kSamples = 200;
+  double before = step_at_pace(pace.minimum);
+  for (int i = 0; i <= kSamples; ++i) {
+    const double p = pace.minimum + (pace.maximum - pace.minimum) * i / kSamples;
+    const double step = step_at_pace(p);
+    if ((i > 0 && !(step > before)) || !(step >= 0.1 && step <= 2.0)) {
+      return "the step must rise with the pace and lie between 0.1 and 2 leg lengths; at pace " +
+             number_text(p, 3) + " it is " + number_text(step, 4) +
+             (i > 0 ? " after " + number_text(before, 4) : std::string());
+    }
+    before = step;
+  }
+  return {};
 }
 
 std::string_view upper_body_name(UpperBody part) {
