@@ -57,12 +57,13 @@ struct WalkOptions {
 // The whole body's walk (--path, --skeleton): a walker like the command's, bent onto the path as
 // `humanoid` and posed on the skeleton, frame by frame at `fps`, until `frames` frames or, with
 // frames 0, until the hips pass the path's end or stall (5 cm in 3 s: the sagittal walk then
-// says where). Writes PREFIX.body.bvh; returns the frames walked.
+// says where). Writes PREFIX.body.bvh and, with `gltf`, PREFIX.body.glb (the same frames);
+// returns the frames walked.
 std::size_t write_body_walk(const gait::ControllerSet& set, const gait::WalkerOptions& options,
                             const terrain::Terrain& ground, const path::Path& route,
                             const body::Humanoid& humanoid, const body::Skeleton& skeleton,
                             const body::SkeletonPoser& poser, double fps, std::size_t frames,
-                            const std::string& file) {
+                            const std::string& prefix, bool gltf) {
   gait::Walker walker(set, options, ground);
   body::PathFollower follower(humanoid, route, walker);
   std::vector<double> travelled;
@@ -81,9 +82,13 @@ std::size_t write_body_walk(const gait::ControllerSet& set, const gait::WalkerOp
     if (travelled.back() >= route.length() + 0.3) break;
     if (i >= three_seconds && travelled[i] - travelled[i - three_seconds] < 0.05) break;
   }
-  io::write_file(file, [&](std::ostream& out) {
+  io::write_file(prefix + ".body.bvh", [&](std::ostream& out) {
     io::write_skeleton_bvh(out, skeleton, rotations, roots, {.frame_time = 1.0 / fps});
   });
+  if (gltf) {
+    io::write_skeleton_gltf(prefix + ".body.glb", skeleton, rotations, roots,
+                            {.frame_time = 1.0 / fps});
+  }
   return roots.size();
 }
 
@@ -196,7 +201,8 @@ void add_walk_command(CLI::App& app) {
   walk->add_option("--reference", o->reference, "Normative curves for the plot and summary");
   walk->add_flag("--gltf", o->gltf,
                  "Also write PREFIX.glb: glTF 2.0 with the skeleton, the animation, a skinned "
-                 "body and the ground");
+                 "body and the ground; with --path or --skeleton also PREFIX.body.glb, the "
+                 "whole body's walk on its skeleton");
   walk->add_option("--path", o->path,
                    "Walk the whole body along a path: a CSV file of x,z points (metres, header "
                    "x,z); writes PREFIX.body.bvh and walks to the path's end unless --duration "
@@ -213,7 +219,8 @@ void add_walk_command(CLI::App& app) {
       "Writes PREFIX.csv (one row per frame), PREFIX.terrain.csv (the ground walked), PREFIX.bvh,\n"
       "PREFIX.svg (joint angles over the gait cycle against the normative band) and\n"
       "PREFIX.poses.svg; with --gltf also PREFIX.glb; with --path or --skeleton also\n"
-      "PREFIX.body.bvh, the whole body in 3-D (arms, trunk, turns).\n"
+      "PREFIX.body.bvh, the whole body in 3-D (arms, trunk, turns), and with --gltf\n"
+      "PREFIX.body.glb, the same frames as glTF 2.0 (skeleton, skinned bones, animation Walk).\n"
       "--terrain: a slope (-25 to 25 deg) or stairs (RISE 0.05-0.25 m, negative going down;\n"
       "TREAD 0.20-0.40 m) start at x = 1 m after level ground; stairs end in a level landing;\n"
       "parts joined by + follow one another: slope:8+stairs:0.17:0.28:6+flat.");
@@ -324,7 +331,7 @@ void add_walk_command(CLI::App& app) {
         walk->count("--duration") + walk->count("--cycles") == 0) {
       // Along a path with no length given: to its end, and the sagittal files as long.
       body_frames = write_body_walk(set, options, ground, *route, *humanoid, *skeleton, *poser,
-                                    o->fps, 0, o->prefix + ".body.bvh");
+                                    o->fps, 0, o->prefix, o->gltf);
       o->duration = static_cast<double>(body_frames - 1) / o->fps;
     }
     gait::Walker walker(set, options, ground);
@@ -333,7 +340,7 @@ void add_walk_command(CLI::App& app) {
                                                   : eval::record_cycles(walker, o->cycles, o->fps);
     if (whole_body && body_frames == 0) {
       body_frames = write_body_walk(set, options, ground, *route, *humanoid, *skeleton, *poser,
-                                    o->fps, motion.frames.size(), o->prefix + ".body.bvh");
+                                    o->fps, motion.frames.size(), o->prefix, o->gltf);
     }
     io::write_file(o->prefix + ".csv",
                    [&motion](std::ostream& out) { io::write_walk_csv(out, motion); });
@@ -356,6 +363,7 @@ void add_walk_command(CLI::App& app) {
                 << (o->skeleton.empty() ? std::string("the stature's skeleton") : o->skeleton)
                 << ": " << body_frames << " frames\n";
       written.push_back(o->prefix + ".body.bvh");
+      if (o->gltf) written.push_back(o->prefix + ".body.glb");
     }
     if (o->gltf) written.push_back(o->prefix + ".glb");
     // Off level ground, the contact bounds are the terrain's (every leg point, edges too).

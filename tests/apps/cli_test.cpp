@@ -447,6 +447,7 @@ TEST(WalkCommand, WalksTheWholeBodyAlongAPath) {
   }
   const std::string bvh = read_text(a.string() + ".body.bvh");
   EXPECT_EQ(bvh, read_text(b.string() + ".body.bvh"));
+  EXPECT_FALSE(std::filesystem::exists(a.string() + ".body.glb"));  // only with --gltf
   EXPECT_THAT(bvh, HasSubstr("ROOT hips"));
   EXPECT_THAT(bvh, HasSubstr("JOINT leftUpperArm"));
   // Walked to the path's end (4, 4) and a little past, facing +X: x beyond 4, z at 4.
@@ -462,13 +463,21 @@ TEST(WalkCommand, WalksTheWholeBodyAlongAPath) {
 
 TEST(WalkCommand, WalksTheBodyOnAMocapSkeleton) {
   const std::filesystem::path prefix = scratch("on_cmu");
-  const auto run = run_program("walk --cycles 2 --fps 60 --skeleton " FUZZYGAIT_SOURCE_DIR
+  const auto run = run_program("walk --cycles 2 --fps 60 --gltf --skeleton " FUZZYGAIT_SOURCE_DIR
                                "/data/mocap/cmu/07_01.bvh -o " +
                                shell_quoted(prefix));
   ASSERT_EQ(run.status, 0) << run.output;
   const std::string bvh = read_text(prefix.string() + ".body.bvh");
   EXPECT_THAT(bvh, HasSubstr("JOINT LeftUpLeg"));
   EXPECT_THAT(bvh, HasSubstr("JOINT LeftForeArm"));
+  // With --gltf the same frames as glTF too (tests/io/skeleton_gltf_import_test.cpp plays them),
+  // beside the sagittal walk's PREFIX.glb; both are listed.
+  const std::string glb = read_text(prefix.string() + ".body.glb");
+  EXPECT_EQ(glb.substr(0, 4), "glTF");
+  EXPECT_THAT(glb, HasSubstr("\"name\":\"LeftForeArm\""));
+  EXPECT_TRUE(std::filesystem::exists(prefix.string() + ".glb"));
+  EXPECT_THAT(run.output, HasSubstr(prefix.string() + ".body.glb"));
+  EXPECT_THAT(run.output, HasSubstr(prefix.string() + ".glb"));
   // The walk took the clip's legs: thigh 0.397 m.
   std::ifstream csv(prefix.string() + ".csv");
   EXPECT_NEAR(io::read_walk_csv(csv, "on_cmu.csv").segments.thigh, 0.397, 0.002);

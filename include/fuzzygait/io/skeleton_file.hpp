@@ -1,5 +1,5 @@
 // A game's skeleton in and out of files: read from a BVH hierarchy or a glTF skin, and a posed
-// skeleton's animation written as BVH.
+// skeleton's animation written as BVH or binary glTF.
 #pragma once
 
 #include <array>
@@ -79,6 +79,38 @@ void write_skeleton_bvh(std::ostream& out, const body::Skeleton& skeleton,
                         std::span<const body::Quat> local_rotations,
                         std::span<const body::Vec3> root_positions,
                         const SkeletonBvhOptions& options = {});
+
+struct SkeletonGltfOptions {
+  double frame_time = 1.0 / 60.0;  // s between keys; 1e-4 to 1
+};
+
+// Writes a posed skeleton's animation as binary glTF 2.0 (.glb), one scene (docs/gltf.md, "The
+// whole body"): a node "Armature" holding the joints as nodes in the skeleton's hierarchy and
+// order, named as the joints, each with its rest offset as translation and rest rotation as
+// rotation; a skin over the joints in skeleton order with inverse bind matrices of the rest
+// pose; a mesh "Body" skinned to them, a thin octahedron along each bone (parent to child, and to
+// its End Site), every vertex weighted 1 to the bone's joint; an animation "Walk", LINEAR, keyed
+// at frame f's time f * frame_time: each joint's rotation, the root's translation. glTF's unit is
+// the metre: offsets and root positions are multiplied by skeleton.metres_per_unit (rotations are
+// unchanged), so forward kinematics of the file is the skeleton's (body::forward_kinematics)
+// times metres_per_unit, to 32-bit float precision. Same span contract as write_skeleton_bvh:
+// `local_rotations` holds skeleton.size() rotations per frame, frame after frame (each a unit
+// quaternion, within 1e-6); `root_positions` one per frame (skeleton units). The bytes depend only
+// on the arguments. Throws std::invalid_argument before writing anything for an invalid skeleton
+// or one of more than 65,536 joints, spans that disagree, no frame, a value that is not finite or
+// not a 32-bit float in metres, a rotation that is not a unit quaternion, a frame time outside
+// 1e-4 to 1 s or frame times that do not increase as 32-bit floats, or a file over glTF's 4 GiB;
+// std::runtime_error when the stream fails.
+void write_skeleton_gltf(std::ostream& out, const body::Skeleton& skeleton,
+                         std::span<const body::Quat> local_rotations,
+                         std::span<const body::Vec3> root_positions,
+                         const SkeletonGltfOptions& options = {});
+// The same into the file at `path`, through write_file (which names the file in its errors); a
+// refused animation leaves no file.
+void write_skeleton_gltf(const std::filesystem::path& path, const body::Skeleton& skeleton,
+                         std::span<const body::Quat> local_rotations,
+                         std::span<const body::Vec3> root_positions,
+                         const SkeletonGltfOptions& options = {});
 
 // The Euler angles (radians) of a rotation for an order such as "ZXY": q = R_Z(a) R_X(b) R_Y(c)
 // with b in [-pi/2, pi/2]; at b = +-pi/2 (gimbal lock) c is 0. Throws std::invalid_argument for
