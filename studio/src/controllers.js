@@ -620,7 +620,9 @@ class ControllerCard {
     this.plots.forEach((plot, i) => plot.setNow(now.inputs[i]));
     const strongest = Math.max(...now.rules);
     const inputs = this.data.inputs.map((input, i) => `${escapeHtml(input.name)} ${niceNumber(now.inputs[i])}`).join(', ');
-    box.innerHTML = `<p class="fired-caption">At ${time.toFixed(2)} s, the ${now.leg} leg: ${inputs} → ${niceNumber(now.output)}</p>
+    // An upper body controller answers for a side (the left), read from a leg.
+    const reader = now.side ? `the ${now.side} side, from the ${now.leg} leg` : `the ${now.leg} leg`;
+    box.innerHTML = `<p class="fired-caption">At ${time.toFixed(2)} s, ${reader}: ${inputs} → ${niceNumber(now.output)}</p>
       <ol class="fired-rules">${this.data.rules.text.map((text, r) => {
         const w = now.rules[r];
         return `<li class="${w > 0 && w === strongest ? 'strongest' : ''}${w === 0 ? ' idle' : ''}" data-strength="${w}">
@@ -664,9 +666,17 @@ export class ControllerPanel {
   render(set, compareSet) {
     this.container.replaceChildren();
     this.cards.clear();
-    const slots = set.controllers.filter((c) => !c.ground);
+    const slots = set.controllers.filter((c) => !c.ground && !c.part);
+    const upperBody = set.controllers.filter((c) => c.part);
     const terrain = set.controllers.filter((c) => c.ground);
     for (const c of slots) this.cards.set(c.id, new ControllerCard(this.container, c, this.handlers));
+    if (upperBody.length) {
+      const group = document.createElement('details');
+      group.className = 'upper-body';
+      group.innerHTML = `<summary>Upper body: ${upperBody.length} controllers (arms, pelvis and chest; each side read from a leg)</summary>`;
+      this.container.append(group);
+      for (const c of upperBody) this.cards.set(c.id, new ControllerCard(group, c, this.handlers));
+    }
     if (terrain.length) {
       const group = document.createElement('details');
       group.className = 'terrain-words';
@@ -683,7 +693,8 @@ export class ControllerPanel {
     if (card) card.update(controller);
   }
 
-  // POST /api/fired's answer: the slots' controllers show it; the terrain words' show nothing.
+  // POST /api/fired's answer: the slots' and the upper body's controllers show it; the terrain
+  // words' show nothing.
   showFired(answer) {
     for (const [id, card] of this.cards) card.showFired(answer ? answer.controllers[id] || null : null, answer ? answer.time : 0);
   }

@@ -1,6 +1,7 @@
 // A walk's frames as the server sends them (apps/studio/src/walk_view.cpp): per frame the time,
 // the pelvis (x, y metres, tilt degrees), both legs' six points (hip, knee, ankle, heel, ball, toe
-// tip; x, y metres; left then right), contacts and joint angles. The views sample it at any time.
+// tip; x, y metres; left then right), contacts and joint angles, and the whole body's joints (x
+// along the walk, y up, z to the left). The views sample it at any time.
 
 export const POINTS = ['hip', 'knee', 'ankle', 'heel', 'ball', 'tip'];
 
@@ -18,6 +19,16 @@ export class Motion {
     // The stature the legs stand for (leg length is 0.530 of it: Winter 2009, as the rig's).
     this.stature = (s.thigh + s.shank + s.ankle_height) / 0.530;
     this.ground = walk.ground;
+    // The body (body::PathFollower's poses, at walk.body.fps): its joints by name, x, y, z each a
+    // frame, in metres from the millimetres' changes the server sends (a running sum).
+    this.joints = new Map(walk.body.joints.map((name, i) => [name, i]));
+    this.bodyFps = walk.body.fps;
+    this.bodyCount = walk.body.count;
+    const changes = walk.body.changes;
+    const stride = this.joints.size * 3;
+    const mm = new Float64Array(changes.length);
+    for (let k = 0; k < changes.length; k++) mm[k] = (k < stride ? 0 : mm[k - stride]) + changes[k];
+    this.bodyData = mm.map((v) => v / 1000);
     // The left foot's strikes (its contact beginning, 0.35 s at least after the last, as the
     // measuring's): they part the gait cycles the curves are drawn over.
     this.strikes = [];
@@ -70,6 +81,26 @@ export class Motion {
       pose.contact[side] = this.contactData[(u < 0.5 ? i : j) * 2 + side] === 1;
     }
     return pose;
+  }
+
+  // The body's joints at time t, interpolated between frames, into `points` ({x, y, z} for each
+  // of this.joints, made when not given), moved `offsetZ` across.
+  sampleBody(t, offsetZ = 0, points = [...this.joints.keys()].map(() => ({ x: 0, y: 0, z: 0 }))) {
+    const last = this.bodyCount - 1;
+    const at = Math.min(Math.max(t * this.bodyFps, 0), last);
+    const i = Math.min(Math.floor(at), Math.max(last - 1, 0));
+    const j = Math.min(i + 1, last);
+    const u = at - i;
+    const stride = this.joints.size * 3;
+    const data = this.bodyData;
+    points.forEach((point, k) => {
+      const a = i * stride + k * 3;
+      const b = j * stride + k * 3;
+      point.x = data[a] * (1 - u) + data[b] * u;
+      point.y = data[a + 1] * (1 - u) + data[b + 1] * u;
+      point.z = data[a + 2] * (1 - u) + data[b + 2] * u + offsetZ;
+    });
+    return points;
   }
 }
 

@@ -1,7 +1,8 @@
-// The character walking in 3D (three.js): a low-poly body built from the walk's frames (the legs'
-// points; trunk, head and arms carried by the pelvis, as in the glTF export), the ground as a
-// tiled strip, a camera that follows the pelvis and orbits with the mouse. A second, translucent
-// character walks beside it when a set is compared.
+// The character walking in 3D (three.js): a low-poly body placed on the joints of the walk's
+// whole body (body::PathFollower's poses on a straight path: the legs, the pelvis turning, rolling
+// and swaying, the trunk and the arms swinging as the set's upper body controllers answer), the
+// ground as a tiled strip, a camera that follows the pelvis and orbits with the mouse. A second,
+// translucent character walks beside it when a set is compared.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { heightAt, makePose } from './motion.js';
@@ -53,7 +54,7 @@ class Sole {
     this.mesh = new THREE.Mesh(new THREE.BoxGeometry(1, height, width), mat);
     parent.add(this.mesh);
   }
-  place(a, b, z) {
+  place(a, b) {
     const dx = b.x - a.x;
     const dy = b.y - a.y;
     const length = Math.max(Math.hypot(dx, dy), 1e-3);
@@ -62,7 +63,7 @@ class Sole {
     const nx = -Math.sin(angle) * this.height * 0.5;
     const ny = Math.cos(angle) * this.height * 0.5;
     this.mesh.scale.set(length, 1, 1);
-    this.mesh.position.set((a.x + b.x) / 2 + nx, (a.y + b.y) / 2 + ny, z);
+    this.mesh.position.set((a.x + b.x) / 2 + nx, (a.y + b.y) / 2 + ny, (a.z + b.z) / 2);
     this.mesh.rotation.set(0, 0, angle);
   }
 }
@@ -74,6 +75,7 @@ class Figure {
     this.ghost = ghost;
     this.built = null;
     this.pose = makePose();
+    this.body = null; // the body's joints, as Motion.sampleBody gives them
   }
 
   // Builds the body for a stature (metres); sizes in proportion, as the glTF export's.
@@ -94,7 +96,6 @@ class Figure {
     const trousers = material(g ? 0xd9822b : 0x394452, g);
     const skin = material(g ? 0xf0a860 : 0xe2b48f, g);
     const shoes = material(g ? 0xc4711e : 0x262626, g);
-    this.hipWidth = 0.19 * 0.53 * H;
     this.legs = [0, 1].map(() => ({
       thigh: new Limb(0.034 * H, trousers, this.group),
       shank: new Limb(0.025 * H, trousers, this.group),
@@ -103,7 +104,7 @@ class Figure {
     }));
     this.pelvis = new Limb(0.05 * H, trousers, this.group);
     this.trunk = new Limb(0.085 * H, shirt, this.group);
-    this.trunk.mesh.scale.set(1, 1, 1);
+    this.shoulders = new Limb(0.04 * H, shirt, this.group);
     this.neck = new Limb(0.022 * H, skin, this.group);
     this.head = new THREE.Mesh(new THREE.SphereGeometry(0.062 * H, 16, 12), skin);
     this.nose = new THREE.Mesh(new THREE.SphereGeometry(0.012 * H, 8, 6), skin);
@@ -111,38 +112,44 @@ class Figure {
     this.arms = [0, 1].map(() => ({
       upper: new Limb(0.022 * H, shirt, this.group),
       lower: new Limb(0.019 * H, skin, this.group),
+      hand: new Limb(0.016 * H, skin, this.group),
     }));
   }
 
   place(motion, t, offsetZ) {
     const H = motion.stature;
     this.build(H);
-    const pose = motion.sample(t, this.pose);
-    const p = pose.pelvis;
-    const w = this.hipWidth / 2;
-    for (let side = 0; side < 2; side++) {
-      const z = (side === 0 ? w : -w) + offsetZ;
-      const [hip, knee, ankle, heel, ball, tip] = pose.legs[side].map((q) => ({ x: q.x, y: q.y, z }));
-      const leg = this.legs[side];
-      leg.thigh.place(hip, knee);
-      leg.shank.place(knee, ankle);
-      leg.foot.place(heel, ball, z);
-      leg.toes.place(ball, tip, z);
+    this.pose = motion.sample(t, this.pose);
+    this.body = motion.sampleBody(t, offsetZ, this.body || undefined);
+    const at = (name) => this.body[motion.joints.get(name)];
+    for (const [index, side] of [[0, 'left'], [1, 'right']]) {
+      const leg = this.legs[index];
+      leg.thigh.place(at(`${side}UpperLeg`), at(`${side}LowerLeg`));
+      leg.shank.place(at(`${side}LowerLeg`), at(`${side}Foot`));
+      leg.foot.place(at(`${side}Heel`), at(`${side}Toes`));
+      leg.toes.place(at(`${side}Toes`), at(`${side}ToesEnd`));
+      const arm = this.arms[index];
+      arm.upper.place(at(`${side}UpperArm`), at(`${side}LowerArm`));
+      arm.lower.place(at(`${side}LowerArm`), at(`${side}Hand`));
+      arm.hand.place(at(`${side}Hand`), at(`${side}HandEnd`));
     }
-    const at = (dy, z = 0, dx = 0) => ({ x: p.x + dx, y: p.y + dy, z: z + offsetZ });
-    this.pelvis.place(at(0.01 * H, w * 1.1), at(0.01 * H, -w * 1.1));
-    // Trunk upright over the pelvis (the rig is the legs; the export carries the trunk the same).
-    this.trunk.place(at(0.07 * H), at(0.27 * H));
-    this.neck.place(at(0.3 * H), at(0.35 * H));
-    this.head.position.set(p.x, p.y + 0.405 * H, offsetZ);
-    this.nose.position.set(p.x + 0.06 * H, p.y + 0.4 * H, offsetZ);
-    const shoulder = 0.11 * H;
-    for (let side = 0; side < 2; side++) {
-      const z = side === 0 ? shoulder : -shoulder;
-      const arm = this.arms[side];
-      arm.upper.place(at(0.285 * H, z), at(0.115 * H, z * 1.05, 0.01 * H));
-      arm.lower.place(at(0.115 * H, z * 1.05, 0.01 * H), at(-0.03 * H, z, 0.04 * H));
-    }
+    // The pelvis across the hip joints (a little wider): it turns, rolls and sways with them.
+    const hips = at('hips');
+    const across = (name, lift) => {
+      const p = at(name);
+      return { x: hips.x + (p.x - hips.x) * 1.1, y: hips.y + (p.y - hips.y) * 1.1 + lift, z: hips.z + (p.z - hips.z) * 1.1 };
+    };
+    this.pelvis.place(across('leftUpperLeg', 0.01 * H), across('rightUpperLeg', 0.01 * H));
+    // The trunk from the waist, halfway from the hips to the lumbar joint, to the base of the neck.
+    const spine = at('spine');
+    this.trunk.place({ x: (hips.x + spine.x) / 2, y: (hips.y + spine.y) / 2, z: (hips.z + spine.z) / 2 }, at('neck'));
+    this.shoulders.place(at('leftUpperArm'), at('rightUpperArm'));
+    this.neck.place(at('neck'), at('head'));
+    const head = at('head');
+    const top = at('headEnd');
+    this.head.position.set((head.x + top.x) / 2, (head.y + top.y) / 2, (head.z + top.z) / 2);
+    // The head looks along the straight path, +x.
+    this.nose.position.set(this.head.position.x + 0.06 * H, this.head.position.y - 0.005 * H, this.head.position.z);
   }
 
   set visible(v) {

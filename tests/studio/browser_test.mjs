@@ -148,10 +148,63 @@ try {
   await load();
   console.log(`page loaded and walked in ${Date.now() - loadStart} ms`);
   check(await page.locator('circle.knot').count() > 20, 'every partition controller shows its knots');
-  check((await page.locator('.controller').count()) === 30, 'all 30 controllers of the default set are shown');
+  check((await page.locator('.controller').count()) === 36, 'all 36 controllers of the default set are shown');
   check((await page.locator('#figures').textContent()).includes('Every contact bound met'),
     'the contact figures show the default walk meets its bounds');
   await shot('studio_loaded.png');
+
+  // ---- the upper body: listed as its group, a word edited as the legs' are, the body redrawn ----
+  {
+    const group = page.locator('details.upper-body');
+    const summary = await group.locator('summary').first().textContent();
+    check((await group.locator('.controller').count()) === 6 && summary.startsWith('Upper body'),
+      `the six upper body controllers are listed as a group ("${summary}")`);
+    await group.locator('summary').first().click();
+    // The left hand's x, y, z (mm) at every frame of the walk the page holds: the running sum of
+    // the changes sent.
+    const hand = () => studio(() => {
+      const body = window.studio.walk.body;
+      const stride = body.joints.length * 3;
+      const first = body.joints.indexOf('leftHand') * 3;
+      const track = [];
+      const at = [0, 0, 0];
+      for (let k = first; k < body.changes.length; k += stride) {
+        for (let c = 0; c < 3; c++) at[c] += body.changes[k + c];
+        track.push(...at);
+      }
+      return track;
+    });
+    const largestMove = (a, b) => {
+      let largest = 0;
+      for (let k = 0; k < a.length; k += 3) largest = Math.max(largest, Math.hypot(a[k] - b[k], a[k + 1] - b[k + 1], a[k + 2] - b[k + 2]));
+      return largest;
+    };
+    await studio(() => window.studio.seek(1.5));
+    await idle();
+    await page.waitForTimeout(200); // drawn in software: a frame every 50 ms at most
+    const view = page.locator('#view3d canvas');
+    const viewBefore = await view.screenshot();
+    await page.locator('#view3d').screenshot({ path: join(outDir, 'upper_body_before.png') });
+    const handBefore = await hand();
+    const field = page.locator('.controller[data-controller="upper_body_shoulder"] [data-word="ahead"] input').first();
+    await field.fill('60');
+    await field.press('Enter');
+    await idle();
+    await page.waitForTimeout(200);
+    const history = await studio(() => window.studio.state.history);
+    check(history.undo === 1 && history.undo_label === 'upper_body_shoulder: angle ahead 34.4 -> 60',
+      `the shoulder's word 'ahead' typed is one step of the history ("${history.undo_label}")`);
+    const handAfter = await hand();
+    const moved = largestMove(handBefore, handAfter);
+    check(handAfter.length === handBefore.length && moved > 20, `the left hand moved in the walk's body (up to ${moved.toFixed(0)} mm)`);
+    check(!same(await view.screenshot(), viewBefore), 'the 3D view redrew the arm');
+    await page.locator('#view3d').screenshot({ path: join(outDir, 'upper_body_after.png') });
+    await page.click('#undo');
+    await idle();
+    check(JSON.stringify(await hand()) === JSON.stringify(handBefore), 'undo puts the arm back exactly');
+    await group.locator('summary').first().click();
+    await studio(() => window.studio.play());
+  }
 
   // ---- which rules fire at a frame: the page's bars are the library's strengths ----
   {
@@ -691,6 +744,12 @@ try {
   await idle();
   await page.waitForTimeout(300);
   await shot('studio.png');
+  // A close look at the whole body (arms, trunk, pelvis) beside the compared one: the 3D view zoomed.
+  const view = await page.locator('#view3d canvas').boundingBox();
+  await page.mouse.move(view.x + view.width * 0.3, view.y + view.height / 2);
+  for (let i = 0; i < 2; i++) await page.mouse.wheel(0, -300);
+  await page.waitForTimeout(400);
+  await page.locator('#view3d').screenshot({ path: join(outDir, 'body_closeup.png') });
 
   check(pageErrors.length === 0, `no errors in the page${pageErrors.length ? ': ' + pageErrors.join('; ') : ''}`);
   const shown = await studio(() => window.studio.errors);

@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "fuzzygait/body/follower.hpp"
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/fuzzy/evaluator.hpp"
@@ -25,6 +26,7 @@
 #include "fuzzygait/io/controller_files.hpp"
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
+#include "fuzzygait/path/path.hpp"
 #include "fuzzygait/studio/studio.hpp"
 #include "scratch.hpp"
 
@@ -75,8 +77,8 @@ TEST(StudioApi, StateShowsEveryControllerWithItsWordsKnotsAndRules) {
   Studio studio(quick("state"));
   const json state = studio.state();
   EXPECT_EQ(state.at("set").at("name"), "default");
-  // The eight slots, then the default set's 22 terrain words' controllers.
-  EXPECT_EQ(state.at("set").at("controllers").size(), 30u);
+  // The eight slots, the default set's 22 terrain words' controllers and its six upper body ones.
+  EXPECT_EQ(state.at("set").at("controllers").size(), 36u);
   const json& knee = controller(state, "swing_knee");
   EXPECT_EQ(knee.at("title"), "swing knee");
   const json& delta = knee.at("inputs").at(0);
@@ -554,7 +556,7 @@ TEST(StudioApi, FiredRulesAreTheLibrarysEvaluationAtTheInputsTheWalkRead) {
     EXPECT_EQ(frame, static_cast<std::size_t>(std::lround(time * 30.0)));
     EXPECT_NEAR(fired.at("time").get<double>(), frames.at("time").at(frame).get<double>(), 1e-4);
     const json& controllers = fired.at("controllers");
-    EXPECT_EQ(controllers.size(), 8u);
+    EXPECT_EQ(controllers.size(), 14u) << "the eight slots and the six upper body controllers";
     for (int slot = 0; slot < gait::kSlotCount; ++slot) {
       const std::string id(gait::slot_name(slot));
       const json& c = controllers.at(id);
@@ -1204,6 +1206,285 @@ TEST(StudioApi, FoldersGivenAtTheStartOpenFirstAndAnyShapeOfTermIsShown) {
         Studio broken(missing);
       },
       std::exception);
+}
+
+// ---- the upper body ----------------------------------------------------------------------------
+
+// A walk's body as the page reads it: each frame's joints in metres (x along the walk, y up, z to
+// the left), the running sum of the millimetres' changes sent.
+struct BodyTrack {
+  std::vector<std::string> joints;
+  std::vector<double> metres;  // [frame][joint][x, y, z]
+
+  explicit BodyTrack(const json& walk)
+      : joints(walk.at("body").at("joints").get<std::vector<std::string>>()) {
+    EXPECT_EQ(walk.at("body").at("unit"), "mm");
+    const auto changes = walk.at("body").at("changes").get<std::vector<long long>>();
+    const std::size_t stride = joints.size() * 3;
+    std::vector<long long> mm(changes.size());
+    for (std::size_t k = 0; k < changes.size(); ++k)
+      mm[k] = (k < stride ? 0 : mm[k - stride]) + changes[k];
+    for (const long long v : mm)
+      metres.push_back(static_cast<double>(v) / 1e3);
+  }
+  std::size_t frames() const { return metres.size() / (joints.size() * 3); }
+  std::array<double, 3> at(std::size_t frame, const std::string& name) const {
+    const auto j = static_cast<std::size_t>(
+        std::distance(joints.begin(), std::find(joints.begin(), joints.end(), name)));
+    if (j == joints.size()) throw std::runtime_error("no joint " + name);
+    const std::size_t k = (frame * joints.size() + j) * 3;
+    return {metres.at(k), metres.at(k + 1), metres.at(k + 2)};
+  }
+};
+
+// The left upper arm's inclination forward of the vertical at each frame sent, degrees.
+std::vector<double> left_arm_inclination(const BodyTrack& body) {
+  std::vector<double> angles;
+  for (std::size_t f = 0; f < body.frames(); ++f) {
+    const auto shoulder = body.at(f, "leftUpperArm");
+    const auto elbow = body.at(f, "leftLowerArm");
+    angles.push_back(rig::degrees(std::atan2(elbow[0] - shoulder[0], shoulder[1] - elbow[1])));
+  }
+  return angles;
+}
+
+// The largest distance of joint `name` between two walks' bodies over their frames, m.
+double largest_move(const json& a, const json& b, const std::string& name) {
+  const BodyTrack one(a);
+  const BodyTrack other(b);
+  double largest = 0.0;
+  for (std::size_t f = 0; f < one.frames(); ++f) {
+    const auto p = one.at(f, name);
+    const auto q = other.at(f, name);
+    largest = std::max(largest, std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]));
+  }
+  return largest;
+}
+
+gait::Walker default_walker(const gait::ControllerSet& set, const terrain::Terrain& ground) {
+  gait::WalkerOptions o;
+  o.segments = rig::segments_from_stature(1.75);
+  o.step_length = 0.70;
+  return gait::Walker(set, o, ground);
+}
+
+TEST(StudioApi, TheWalkCarriesTheWholeBodyAsTheLibraryPosesIt) {
+  Studio studio(quick("body"));
+  const json walk = studio.walk().at("walk");
+  const json& joints = walk.at("body").at("joints");
+  ASSERT_EQ(joints.size(), body::kJointCount + 2);
+  EXPECT_EQ(joints.at(0), "hips");
+  EXPECT_EQ(joints.at(body::kJointCount), "leftHeel");
+  // Every other page frame: 15 a second.
+  const auto count = walk.at("frames").at("count").get<std::size_t>();
+  EXPECT_EQ(walk.at("body").at("fps"), 15.0);
+  const auto body_count = walk.at("body").at("count").get<std::size_t>();
+  EXPECT_EQ(body_count, (count + 1) / 2);
+  ASSERT_EQ(walk.at("body").at("changes").size(), body_count * joints.size() * 3);
+  const BodyTrack track(walk);
+  ASSERT_EQ(track.frames(), body_count);
+
+  // A game's follower on the straight path, updated every frame the walk is recorded at: at the
+  // frames sent every joint is where the studio sends it (to the millimetre it is sent at).
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::Walker walker = default_walker(set, flat);
+  const path::Path straight;
+  const body::Humanoid humanoid = body::humanoid_from_stature(1.75);
+  body::PathFollower follower(humanoid, straight, walker);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < 8 * body_count; ++i) {
+    if (i > 0) walker.advance(1.0 / 120.0);
+    const body::BodyPose& pose = follower.update(walker);
+    if (i % 8 != 0) continue;
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      const body::Vec3& p =
+          j < body::kJointCount ? pose.position[j] : pose.heel[j - body::kJointCount];
+      const auto sent = track.at(i / 8, joints.at(j).get<std::string>());
+      worst = std::max(
+          {worst, std::abs(sent[0] - p.z), std::abs(sent[1] - p.y), std::abs(sent[2] - p.x)});
+    }
+  }
+  EXPECT_LE(worst, 5e-4 + 1e-9);
+  // The left side is +z, and the feet stand apart there.
+  EXPECT_GT(track.at(0, "leftUpperArm")[2], 0.1);
+  EXPECT_LT(track.at(0, "rightFoot")[2], 0.0);
+}
+
+TEST(StudioApi, UpperBodyControllersAreEditedAsTheLegsAndMoveTheBody) {
+  Studio studio(quick("upper_body"));
+  const json state = studio.state();
+  const json& shoulder = controller(state, "upper_body_shoulder");
+  EXPECT_EQ(shoulder.at("title"), "upper body: shoulder");
+  EXPECT_EQ(shoulder.at("group"), "upper body");
+  EXPECT_EQ(shoulder.at("part"), "shoulder");
+  EXPECT_TRUE(shoulder.at("slot").is_null());
+  EXPECT_EQ(shoulder.at("inputs").at(0).at("knots"), json({-20.0, 11.0, 42.0}));
+  for (const char* id :
+       {"upper_body_elbow", "upper_body_pelvis_rotation", "upper_body_thorax_rotation",
+        "upper_body_pelvis_obliquity", "upper_body_pelvis_sway"}) {
+    EXPECT_EQ(controller(state, id).at("group"), "upper body") << id;
+  }
+  const json before = studio.walk().at("walk");
+
+  // A knot: the arms move, the legs' walk and the pelvis do not.
+  const json knot = studio.edit(
+      {{"controller", "upper_body_shoulder"}, {"variable", "hip"}, {"knot", 1}, {"value", 25}});
+  EXPECT_EQ(knot.at("controller").at("inputs").at(0).at("knots"), json({-20.0, 25.0, 42.0}));
+  EXPECT_EQ(knot.at("history").at("undo_label"),
+            "upper_body_shoulder: hip knot 1 (neutral) 11 -> 25");
+  EXPECT_EQ(knot.at("walk").at("frames"), before.at("frames"));
+  EXPECT_GT(largest_move(knot.at("walk"), before, "leftHand"), 0.05);
+  EXPECT_EQ(largest_move(knot.at("walk"), before, "leftFoot"), 0.0);
+  EXPECT_EQ(largest_move(knot.at("walk"), before, "hips"), 0.0);
+
+  // The word the arm reaches forward with: the arm swings further forward.
+  const json word = studio.edit({{"controller", "upper_body_shoulder"},
+                                 {"variable", "angle"},
+                                 {"term", "ahead"},
+                                 {"value", 60}});
+  const std::vector<double> was = left_arm_inclination(BodyTrack(before));
+  const std::vector<double> now = left_arm_inclination(BodyTrack(word.at("walk")));
+  EXPECT_GT(*std::max_element(now.begin(), now.end()),
+            *std::max_element(was.begin(), was.end()) + 10.0);
+
+  // A rule: the pelvis turns forward, not back, on the side whose other leg's thigh is flexed.
+  std::vector<std::string> rules = rules_of(controller(state, "upper_body_pelvis_rotation"));
+  ASSERT_EQ(rules.size(), 3u);
+  EXPECT_EQ(rules[2], "if hip is flexed then angle is back");
+  rules[2] = "if hip is flexed then angle is forward";
+  const json ruled =
+      studio.edit_rules({{"controller", "upper_body_pelvis_rotation"}, {"rules", rules}});
+  EXPECT_EQ(ruled.at("history").at("undo_label"), "upper_body_pelvis_rotation: rule 3 edited");
+  EXPECT_GT(largest_move(ruled.at("walk"), word.at("walk"), "leftUpperLeg"), 0.007);
+  EXPECT_EQ(ruled.at("walk").at("frames"), before.at("frames"));
+
+  // Undone to the set as opened: the body exactly as it was; redone: as edited.
+  studio.undo();
+  studio.undo();
+  const json undone = studio.undo();
+  EXPECT_EQ(timeless(undone.at("walk")), timeless(before));
+  EXPECT_EQ(controller(undone, "upper_body_shoulder").at("inputs"), shoulder.at("inputs"));
+  studio.redo();
+  studio.redo();
+  EXPECT_EQ(timeless(studio.redo().at("walk")), timeless(ruled.at("walk")));
+  EXPECT_EQ(rules_of(controller(studio.state(), "upper_body_pelvis_rotation")), rules);
+}
+
+TEST(StudioApi, AnUpperBodyEditIsSavedToItsFileAndOpensAgain) {
+  StudioOptions options = quick("upper_body_save");
+  Studio studio(options);
+  studio.edit(
+      {{"controller", "upper_body_elbow"}, {"variable", "hip"}, {"knot", 1}, {"value", 20}});
+  const json walk = studio.walk().at("walk");
+  studio.save({{"name", "arms"}});
+  const std::filesystem::path folder = options.workspace / "arms";
+  ASSERT_TRUE(std::filesystem::is_regular_file(folder / "upper_body_elbow.fll"));
+  std::ifstream manifest(folder / "manifest.json");
+  const json names = json::parse(manifest).at("upper_body");
+  EXPECT_EQ(names.size(), 6u);
+  EXPECT_EQ(names.at("elbow"), "upper_body_elbow.fll");
+  const gait::ControllerSet loaded = gait::ControllerSet::load(folder);
+  const auto& elbow = loaded.upper_body[static_cast<std::size_t>(gait::UpperBody::Elbow)];
+  ASSERT_TRUE(elbow.has_value());
+  EXPECT_EQ(elbow->engine().inputs.at(0).terms.at(1).parameters.at(1), 20.0);
+  studio.open({{"set", "style:default"}});
+  EXPECT_NE(timeless(studio.walk().at("walk")), timeless(walk));
+  const json opened = studio.open({{"set", "saved:arms"}});
+  EXPECT_EQ(controller(opened, "upper_body_elbow").at("inputs").at(0).at("knots").at(1), 20.0);
+  EXPECT_EQ(timeless(opened.at("walk")), timeless(walk));
+}
+
+TEST(StudioApi, AnUpperBodyControllerReadingTheGroundIsRefused) {
+  StudioOptions options = quick("upper_body_refusals");
+  Studio studio(options);
+  // A set whose shoulder reads the sole (as a file of one's own might) does not open: the loader
+  // refuses it, and the studio answers naming the file and the metric.
+  studio.save({{"name", "reads_sole"}});
+  const std::filesystem::path fll = options.workspace / "reads_sole" / "upper_body_shoulder.fll";
+  std::string text;
+  {
+    std::ifstream in(fll);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::vector<std::pair<std::string, std::string>> changes = {
+      {"InputVariable: hip", "InputVariable: sole"}, {"if hip is", "if sole is"}};
+  for (const auto& [from, to] : changes) {
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at))
+      text.replace(at, from.size(), to);
+  }
+  std::ofstream(fll) << text;
+  const json state = studio.state();
+  const json walk = studio.walk();
+  try {
+    studio.open({{"set", "saved:reads_sole"}});
+    ADD_FAILURE() << "a set whose upper body reads the sole opened";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.status(), 422);
+    EXPECT_EQ(e.field(), "set");
+    EXPECT_THAT(e.what(), HasSubstr("upper_body_shoulder.fll"));
+    EXPECT_THAT(e.what(), HasSubstr("not 'sole'"));
+  }
+  // A rule reading the ground in an upper body controller: there is no such input to read.
+  for (const char* metric : {"sole", "incline", "stairs"}) {
+    std::vector<std::string> rules = rules_of(controller(state, "upper_body_shoulder"));
+    rules.at(0) = std::string("if ") + metric + " is level then angle is ahead";
+    try {
+      studio.edit_rules({{"controller", "upper_body_shoulder"}, {"rules", rules}});
+      ADD_FAILURE() << "a rule reading " << metric << " was taken";
+    } catch (const RequestError& e) {
+      EXPECT_EQ(e.status(), 422);
+      EXPECT_EQ(e.field(), "rules");
+      EXPECT_THAT(e.what(), HasSubstr(std::string("rule 1")));
+      EXPECT_THAT(e.what(), HasSubstr(std::string("'") + metric + "'"));
+      EXPECT_THAT(e.what(), HasSubstr("(inputs: hip;"));
+    }
+  }
+  EXPECT_EQ(
+      refusal([&] {
+        studio.edit(
+            {{"controller", "upper_body_wrist"}, {"variable", "hip"}, {"knot", 1}, {"value", 12}});
+      }),
+      std::make_pair(422, std::string("controller")));
+  EXPECT_EQ(studio.state(), state);
+  EXPECT_EQ(timeless(studio.walk().at("walk")), timeless(walk.at("walk")));
+}
+
+TEST(StudioApi, FiredRulesOfTheUpperBodyAreTheLeftSidesReading) {
+  Studio studio(quick("upper_body_fired"));
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::Walker walker = default_walker(set, flat);
+  std::size_t at = 0;
+  for (const std::size_t frame : {15u, 40u, 66u}) {
+    for (; at < frame * 4; ++at)
+      walker.advance(1.0 / 120.0);
+    const json fired = studio.fired({{"time", static_cast<double>(frame) / 30.0}});
+    for (int p = 0; p < gait::kUpperBodyCount; ++p) {
+      const auto part = static_cast<gait::UpperBody>(p);
+      const std::string id = "upper_body_" + std::string(gait::upper_body_name(part));
+      const json& c = fired.at("controllers").at(id);
+      // The left side's: its own leg, or the other for the turns.
+      const bool turn =
+          part == gait::UpperBody::PelvisRotation || part == gait::UpperBody::ThoraxRotation;
+      EXPECT_EQ(c.at("side"), "left") << id;
+      EXPECT_EQ(c.at("leg"), turn ? "right" : "left") << id;
+      const gait::Controller& controller = *set.upper_body[static_cast<std::size_t>(p)];
+      const gait::MetricValues read = body::PathFollower::leg_metrics(walker, turn ? 1 : 0);
+      gait::MetricValues metrics{};
+      ASSERT_EQ(c.at("inputs").size(), controller.input_count()) << id;
+      for (std::size_t i = 0; i < controller.input_count(); ++i) {
+        const auto m = static_cast<std::size_t>(controller.input(i));
+        EXPECT_NEAR(c.at("inputs").at(i).get<double>(), read[m], 5e-5) << id << " at " << frame;
+        metrics[m] = c.at("inputs").at(i).get<double>();
+      }
+      fuzzy::Workspace workspace = controller.make_workspace();
+      EXPECT_NEAR(c.at("output").get<double>(), controller.evaluate(metrics, workspace), 1e-4)
+          << id;
+      ASSERT_EQ(c.at("rules").size(), controller.engine().rule_blocks.at(0).rules.size()) << id;
+      EXPECT_GT(*std::max_element(c.at("rules").begin(), c.at("rules").end()), 0.2) << id;
+    }
+  }
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 #include "fired.hpp"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "fuzzygait/body/follower.hpp"
 #include "fuzzygait/gait/walker.hpp"
 #include "runtime/gait/walker_stages.hpp"
 
@@ -20,6 +22,30 @@ double rounded(double x) {
 
 bool swing_slot(int slot) {
   return gait::slot_name(slot).starts_with("swing");
+}
+
+// The controller's entry: the inputs as sent, and everything else evaluated at them, so that what
+// the page shows is the library's evaluation at the numbers it shows.
+json reading_json(const gait::Controller& c, const gait::MetricValues& read,
+                  RuleStrengths& strengths) {
+  std::vector<double> inputs;
+  gait::MetricValues metrics{};
+  for (std::size_t i = 0; i < c.input_count(); ++i) {
+    const auto m = static_cast<std::size_t>(c.input(i));
+    inputs.push_back(rounded(read[m]));
+    metrics[m] = inputs.back();
+  }
+  std::vector<double> rules = strengths.at(inputs);
+  for (double& x : rules)
+    x = rounded(x);
+  fuzzy::Workspace workspace = c.make_workspace();
+  return {
+      {"inputs", inputs}, {"rules", rules}, {"output", rounded(c.evaluate(metrics, workspace))}};
+}
+
+// Whether the left side's `part` reads the right leg: each side turns with the other leg.
+bool reads_other_leg(gait::UpperBody part) {
+  return part == gait::UpperBody::PelvisRotation || part == gait::UpperBody::ThoraxRotation;
 }
 
 }  // namespace
@@ -42,6 +68,8 @@ std::vector<FrameInputs> trace_inputs(const gait::ControllerSet& set, const Walk
     frame.metrics = step.metrics;
     frame.swing = {walker.phase(rig::Side::Left) == gait::Phase::Swing,
                    walker.phase(rig::Side::Right) == gait::Phase::Swing};
+    frame.body_metrics = {body::PathFollower::leg_metrics(walker, 0),
+                          body::PathFollower::leg_metrics(walker, 1)};
     frames.push_back(frame);
   }
   return frames;
@@ -93,6 +121,16 @@ std::vector<double> RuleStrengths::at(std::span<const double> inputs) {
   return strengths;
 }
 
+std::vector<RuleStrengths> rule_strengths(const gait::ControllerSet& set) {
+  std::vector<RuleStrengths> strengths;
+  for (int slot = 0; slot < gait::kSlotCount; ++slot)
+    strengths.emplace_back(set.controllers.at(static_cast<std::size_t>(slot)).engine());
+  for (const std::optional<gait::Controller>& c : set.upper_body) {
+    if (c) strengths.emplace_back(c->engine());
+  }
+  return strengths;
+}
+
 json fired_json(const gait::ControllerSet& set, const FrameInputs& frame, std::size_t index,
                 std::vector<RuleStrengths>& strengths) {
   json controllers = json::object();
@@ -106,23 +144,20 @@ json fired_json(const gait::ControllerSet& set, const FrameInputs& frame, std::s
       continue;
     }
     const std::size_t leg = frame.swing[0] == swing ? 0 : 1;
-    // The inputs as sent, and everything else evaluated at them: what the page shows is the
-    // library's evaluation at the numbers it shows.
-    std::vector<double> inputs;
-    gait::MetricValues metrics{};
-    for (std::size_t i = 0; i < c.input_count(); ++i) {
-      const auto m = static_cast<std::size_t>(c.input(i));
-      inputs.push_back(rounded(frame.metrics[leg][m]));
-      metrics[m] = inputs.back();
-    }
-    std::vector<double> rules = strengths.at(static_cast<std::size_t>(s)).at(inputs);
-    for (double& x : rules)
-      x = rounded(x);
-    fuzzy::Workspace workspace = c.make_workspace();
-    controllers[name] = {{"leg", leg == 0 ? "left" : "right"},
-                         {"inputs", inputs},
-                         {"rules", rules},
-                         {"output", rounded(c.evaluate(metrics, workspace))}};
+    json reading = reading_json(c, frame.metrics[leg], strengths.at(static_cast<std::size_t>(s)));
+    reading["leg"] = leg == 0 ? "left" : "right";
+    controllers[name] = std::move(reading);
+  }
+  std::size_t next = gait::kSlotCount;
+  for (int p = 0; p < gait::kUpperBodyCount; ++p) {
+    const std::optional<gait::Controller>& c = set.upper_body[static_cast<std::size_t>(p)];
+    if (!c) continue;
+    const auto part = static_cast<gait::UpperBody>(p);
+    const std::size_t leg = reads_other_leg(part) ? 1 : 0;
+    json reading = reading_json(*c, frame.body_metrics[leg], strengths.at(next++));
+    reading["leg"] = leg == 0 ? "left" : "right";
+    reading["side"] = "left";
+    controllers["upper_body_" + std::string(gait::upper_body_name(part))] = std::move(reading);
   }
   return {{"time", frame.time}, {"frame", index}, {"controllers", controllers}};
 }

@@ -20,6 +20,8 @@ struct FrameInputs {
   double time = 0.0;
   std::array<gait::MetricValues, 2> metrics{};  // [left, right]
   std::array<bool, 2> swing{};
+  // What the upper body's controllers read of each leg there (body::PathFollower::leg_metrics).
+  std::array<gait::MetricValues, 2> body_metrics{};
 };
 
 // The metrics the walker's controllers read at each of the page's frames (every kRecordFps /
@@ -44,10 +46,15 @@ class RuleStrengths {
   std::vector<fuzzy::Workspace> workspaces_;
 };
 
+// One RuleStrengths for each controller fired_json shows: the eight slots', then the set's upper
+// body controllers in gait::UpperBody order.
+std::vector<RuleStrengths> rule_strengths(const gait::ControllerSet& set);
+
 // {"time", "frame", "controllers": {ID: {"leg", "inputs": [x...], "rules": [strength...],
-// "output"}}} for the eight slots' controllers at `frame`: each read by the leg it drives there
-// (the left leg when both are in the slot's phase, as the page's curves are the left leg's).
-// `strengths` holds one RuleStrengths a slot, made of the set's controllers.
+// "output"}}} at `frame` for the eight slots' controllers, each read by the leg it drives there
+// (the left leg when both are in the slot's phase, as the page's curves are the left leg's), and
+// for the upper body's, each as the left side reads it ("side": "left"): from the left leg, or
+// the right for the pelvis's and the thorax's turn. `strengths` as rule_strengths made it.
 nlohmann::json fired_json(const gait::ControllerSet& set, const FrameInputs& frame,
                           std::size_t index, std::vector<RuleStrengths>& strengths);
 

@@ -185,8 +185,10 @@ json rules_json(const fuzzy::Engine& engine, bool partition) {
 }
 
 std::string title(const ControllerPlace& place) {
-  std::string text(gait::slot_name(place.slot));
+  std::string text(place.part >= 0 ? gait::upper_body_name(static_cast<gait::UpperBody>(place.part))
+                                   : gait::slot_name(place.slot));
   std::replace(text.begin(), text.end(), '_', ' ');
+  if (place.part >= 0) return "upper body: " + text;
   if (place.ground >= 0) {
     text +=
         std::string(", ") + kGroundNames[static_cast<std::size_t>(place.ground)] + " " + place.word;
@@ -291,8 +293,9 @@ ControllerPlace find_place(const gait::ControllerSet& set, const std::string& id
   }
   throw RequestError(422, "controller",
                      "the set has no controller '" + id +
-                         "' (a slot such as 'swing_knee', or a "
-                         "terrain word's such as 'stairs_swing_knee_up')");
+                         "' (a slot such as 'swing_knee', a terrain word's such as "
+                         "'stairs_swing_knee_up', or an upper body part's such as "
+                         "'upper_body_shoulder')");
 }
 
 std::string names_of(const std::vector<fuzzy::Term>& terms) {
@@ -369,15 +372,20 @@ std::string rules_change(const std::vector<std::string>& before,
 // controller refuses it.
 void put_controller(gait::ControllerSet& set, const ControllerPlace& place, fuzzy::Engine engine,
                     const std::string& source, const char* field) {
+  std::optional<gait::Controller> changed;
   try {
-    gait::Controller changed(std::move(engine), source);
-    if (place.ground < 0) {
-      set.controllers.at(static_cast<std::size_t>(place.slot)) = std::move(changed);
-    } else {
-      set.terrain_controllers.at(place.terrain_index) = std::move(changed);
-    }
+    changed.emplace(std::move(engine), source);
   } catch (const std::invalid_argument& e) {
     throw RequestError(422, field, std::string("the controller would not work: ") + e.what());
+  }
+  // An edit changes no controller's inputs, so an upper body controller still reads only what
+  // body::PathFollower supplies (the set loader's check).
+  if (place.part >= 0) {
+    set.upper_body.at(static_cast<std::size_t>(place.part)) = std::move(changed);
+  } else if (place.ground < 0) {
+    set.controllers.at(static_cast<std::size_t>(place.slot)) = std::move(*changed);
+  } else {
+    set.terrain_controllers.at(place.terrain_index) = std::move(*changed);
   }
 }
 
@@ -391,7 +399,7 @@ std::string Edited::label(double from) const {
 std::vector<ControllerPlace> controller_places(const gait::ControllerSet& set) {
   std::vector<ControllerPlace> places;
   for (int s = 0; s < gait::kSlotCount; ++s) {
-    places.push_back({std::string(gait::slot_name(s)), s, -1, {}, 0});
+    places.push_back({std::string(gait::slot_name(s)), s, -1, {}, 0, -1});
   }
   for (std::size_t g = 0; g < set.ground.size(); ++g) {
     const gait::ControllerSet::GroundWords& words = set.ground[g];
@@ -402,14 +410,25 @@ std::vector<ControllerPlace> controller_places(const gait::ControllerSet& set) {
         if (c < 0) continue;
         places.push_back({std::string(kGroundNames[g]) + "_" + std::string(gait::slot_name(s)) +
                               "_" + words.words[w],
-                          s, static_cast<int>(g), words.words[w], static_cast<std::size_t>(c)});
+                          s, static_cast<int>(g), words.words[w], static_cast<std::size_t>(c), -1});
       }
     }
+  }
+  for (int part = 0; part < gait::kUpperBodyCount; ++part) {
+    if (!set.upper_body[static_cast<std::size_t>(part)]) continue;
+    places.push_back(
+        {"upper_body_" + std::string(gait::upper_body_name(static_cast<gait::UpperBody>(part))),
+         0,
+         -1,
+         {},
+         0,
+         part});
   }
   return places;
 }
 
 const gait::Controller& controller_at(const gait::ControllerSet& set, const ControllerPlace& p) {
+  if (p.part >= 0) return set.upper_body.at(static_cast<std::size_t>(p.part)).value();
   return p.ground < 0 ? set.controllers.at(static_cast<std::size_t>(p.slot))
                       : set.terrain_controllers.at(p.terrain_index);
 }
@@ -419,7 +438,7 @@ json controller_json(const gait::ControllerSet& set, const ControllerPlace& plac
   const fuzzy::Engine& engine = c.engine();
   const std::optional<fuzzy::PartitionController<double>> partition = fuzzy::as_partition(engine);
   json controller = {{"id", place.id},
-                     {"slot", gait::slot_name(place.slot)},
+                     {"slot", place.part >= 0 ? json(nullptr) : json(gait::slot_name(place.slot))},
                      {"title", title(place)},
                      {"description", engine.description},
                      {"inputs", inputs_json(c, partition)},
@@ -430,6 +449,10 @@ json controller_json(const gait::ControllerSet& set, const ControllerPlace& plac
   if (place.ground >= 0) {
     controller["ground"] = kGroundNames[static_cast<std::size_t>(place.ground)];
     controller["word"] = place.word;
+  }
+  if (place.part >= 0) {
+    controller["group"] = "upper body";
+    controller["part"] = gait::upper_body_name(static_cast<gait::UpperBody>(place.part));
   }
   for (const fuzzy::OutputVariable& out : engine.outputs)
     controller["outputs"].push_back(output_json(out));

@@ -10,18 +10,20 @@
 
 namespace fuzzygait::studio::detail {
 
-// Where a controller sits in a set. Its id is a slot's name ("swing_knee") or, for a terrain
-// word's own controller, GROUND_SLOT_WORD ("stairs_swing_knee_up"), the file name
-// io::save_controller_set gives it.
+// Where a controller sits in a set. Its id is a slot's name ("swing_knee"), for a terrain word's
+// own controller GROUND_SLOT_WORD ("stairs_swing_knee_up"), and for an upper body controller
+// upper_body_PART ("upper_body_shoulder"): the file name io::save_controller_set gives it.
 struct ControllerPlace {
   std::string id;
-  int slot = 0;
+  int slot = 0;     // the slot, when neither ground nor part is set
   int ground = -1;  // gait::Ground, or -1 for the slot's own controller
   std::string word;
   std::size_t terrain_index = 0;  // into ControllerSet::terrain_controllers when ground >= 0
+  int part = -1;                  // gait::UpperBody of an upper body controller, or -1
 };
 
-// Every controller of the set: the slots' in slot order, then the terrain words'.
+// Every controller of the set: the slots' in slot order, the terrain words', then the upper
+// body's the set has, in gait::UpperBody order.
 std::vector<ControllerPlace> controller_places(const gait::ControllerSet& set);
 const gait::Controller& controller_at(const gait::ControllerSet& set, const ControllerPlace& p);
 

@@ -249,8 +249,8 @@ struct Studio::Session {
     }
   }
 
-  // The inputs the controllers read at the current walk's frames, and the slots' rule strengths,
-  // made when the page first asks which rules fire.
+  // The inputs the controllers read at the current walk's frames, and the rule strengths of the
+  // slots' and the upper body's controllers, made when the page first asks which rules fire.
   std::optional<std::vector<detail::FrameInputs>> trace;
   std::vector<detail::RuleStrengths> strengths;
 
@@ -475,9 +475,7 @@ json Studio::fired(const json& request) {
   s.current_walk();
   if (!s.trace) {
     s.trace = detail::trace_inputs(s.current, s.settings, s.ground, s.walked->motion.frames.size());
-    s.strengths.clear();
-    for (int slot = 0; slot < gait::kSlotCount; ++slot)
-      s.strengths.emplace_back(s.current.controllers.at(static_cast<std::size_t>(slot)).engine());
+    s.strengths = detail::rule_strengths(s.current);
   }
   if (s.trace->empty()) throw RequestError(422, "time", "the walk has no frames");
   const auto index =

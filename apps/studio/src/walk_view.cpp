@@ -1,12 +1,15 @@
 #include "walk_view.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 
+#include "fuzzygait/body/follower.hpp"
 #include "fuzzygait/eval/terrain_report.hpp"
 #include "fuzzygait/gait/walker.hpp"
+#include "fuzzygait/path/path.hpp"
 #include "fuzzygait/rig/rig.hpp"
 
 namespace fuzzygait::studio::detail {
@@ -43,6 +46,45 @@ double stalled_duration(int cycles) {
   return 1.2 * (cycles + 2);
 }
 
+// The body's joints in the walk's axes (x along the walk, y up, z to the character's left; the
+// humanoid's Z, Y and X on the straight path): every joint of body::Humanoid by its VRM name, then
+// the backs of the heels, three numbers each a frame in whole millimetres (the body is drawn, not
+// measured), each sent as its change from the frame before (from 0 before the first): less than
+// half the bytes of the positions written out, and a running sum gives each frame's exactly.
+json body_json(const std::vector<body::BodyPose>& poses) {
+  json joints = json::array();
+  for (std::size_t j = 0; j < body::kJointCount; ++j)
+    joints.push_back(body::name(static_cast<body::Joint>(j)));
+  joints.push_back("leftHeel");
+  joints.push_back("rightHeel");
+  constexpr std::size_t kNumbers = (body::kJointCount + 2) * 3;
+  std::vector<long long> changes;
+  changes.reserve(poses.size() * kNumbers);
+  std::array<long long, kNumbers> last{};
+  for (const body::BodyPose& pose : poses) {
+    std::size_t k = 0;
+    auto put = [&](double metres) {
+      const long long mm = std::isfinite(metres) ? std::llround(metres * 1e3) : 0;
+      changes.push_back(mm - last[k]);
+      last[k++] = mm;
+    };
+    auto put_point = [&](const body::Vec3& p) {
+      put(p.z);
+      put(p.y);
+      put(p.x);
+    };
+    for (const body::Vec3& p : pose.position)
+      put_point(p);
+    for (const body::Vec3& p : pose.heel)
+      put_point(p);
+  }
+  return {{"fps", kBodyFps},
+          {"count", poses.size()},
+          {"joints", joints},
+          {"unit", "mm"},
+          {"changes", changes}};
+}
+
 json curve_json(const eval::Curve& curve, bool with_sd) {
   json c = {{"mean", std::vector<double>(curve.mean.begin(), curve.mean.end())}};
   if (with_sd) c["sd"] = std::vector<double>(curve.sd.begin(), curve.sd.end());
@@ -66,6 +108,26 @@ json figure(const char* name, double value, const char* unit, const char* bound,
           {"unit", unit},
           {"bound", bound},
           {"missed", miss}};
+}
+
+// The body at kBodyFps over a walk `frames` recorded frames long: the set walked again as it was
+// recorded (the walker is deterministic, so its states are the recording's), followed on a
+// straight path. On a straight path the follower's pose depends on the walker's state alone (a
+// planted foot's frame is the path's), so posing only the frames sent is enough.
+std::vector<body::BodyPose> pose_body(const gait::ControllerSet& set, const WalkSettings& settings,
+                                      const terrain::Terrain& ground, std::size_t frames) {
+  const body::Humanoid humanoid = body::humanoid_from_stature(settings.stature);
+  gait::Walker walker(set, walker_options(settings), ground);
+  const path::Path straight;
+  body::PathFollower follower(humanoid, straight, walker);
+  const auto stride = static_cast<std::size_t>(std::lround(kRecordFps / kBodyFps));
+  std::vector<body::BodyPose> poses;
+  poses.reserve(frames / stride + 1);
+  for (std::size_t i = 0; i < frames; ++i) {
+    if (i > 0) walker.advance(1.0 / kRecordFps);
+    if (i % stride == 0) poses.push_back(follower.update(walker));
+  }
+  return poses;
 }
 
 }  // namespace
@@ -100,6 +162,9 @@ Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
     w.motion = eval::record(walker, stalled_duration(settings.cycles), kRecordFps);
   }
   w.walk_ms = milliseconds_since(start);
+  const auto posing = std::chrono::steady_clock::now();
+  w.body = pose_body(set, settings, ground, w.motion.frames.size());
+  w.body_ms = milliseconds_since(posing);
 
   const auto measuring = std::chrono::steady_clock::now();
   try {
@@ -172,25 +237,28 @@ json walk_json(const Walked& walked, const terrain::Terrain& ground) {
   for (const rig::Point& p : ground.profile(low - 2.0, high + 2.0))
     ground_points.push_back({metres(p.x), metres(p.y)});
   const rig::Segments& s = m.segments;
-  json result = {{"frames",
-                  {{"fps", m.fps / static_cast<double>(stride)},
-                   {"count", time.size()},
-                   {"time", time},
-                   {"pelvis", pelvis},
-                   {"legs", legs},
-                   {"contact", contact}}},
-                 {"segments",
-                  {{"thigh", s.thigh},
-                   {"shank", s.shank},
-                   {"ankle_height", s.ankle_height},
-                   {"heel", s.heel},
-                   {"ball", s.ball},
-                   {"toe", s.toe}}},
-                 {"ground", ground_points},
-                 {"completed", walked.failure.empty()},
-                 {"warnings", walked.missed},
-                 {"figures", walked.figures},
-                 {"timing_ms", {{"walk", walked.walk_ms}, {"measure", walked.measure_ms}}}};
+  json result = {
+      {"frames",
+       {{"fps", m.fps / static_cast<double>(stride)},
+        {"count", time.size()},
+        {"time", time},
+        {"pelvis", pelvis},
+        {"legs", legs},
+        {"contact", contact}}},
+      {"segments",
+       {{"thigh", s.thigh},
+        {"shank", s.shank},
+        {"ankle_height", s.ankle_height},
+        {"heel", s.heel},
+        {"ball", s.ball},
+        {"toe", s.toe}}},
+      {"body", body_json(walked.body)},
+      {"ground", ground_points},
+      {"completed", walked.failure.empty()},
+      {"warnings", walked.missed},
+      {"figures", walked.figures},
+      {"timing_ms",
+       {{"walk", walked.walk_ms}, {"body", walked.body_ms}, {"measure", walked.measure_ms}}}};
   if (const std::optional<eval::GaitReport>& r = walked.report) {
     result["curves"] = {{"thigh", curve_json(r->thigh, false)},
                         {"knee", curve_json(r->knee, false)},

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzzygait/body/humanoid.hpp"
 #include "fuzzygait/eval/evaluation.hpp"
 #include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/gait/controllers.hpp"
@@ -29,6 +30,10 @@ struct WalkSettings {
 // software; the chord of a point between two frames 1/30 s apart is within 1 % of its arc.
 inline constexpr double kRecordFps = 120.0;
 inline constexpr double kPageFps = 30.0;
+// Frames a second the whole body is sent at: every other page frame, which halves the answer's
+// largest part (the page interpolates it: the chord of a swinging hand or knee between two frames
+// is within a centimetre of its arc).
+inline constexpr double kBodyFps = 15.0;
 
 struct Walked {
   eval::Motion motion;
@@ -39,7 +44,11 @@ struct Walked {
   std::string not_measured;
   std::vector<std::string> missed;  // contact bounds missed, one phrase each
   nlohmann::json figures;           // the contact figures with their bounds
-  double walk_ms = 0.0;             // wall time of the walk and of its measuring
+  // The whole body (body::PathFollower on a straight path, body::humanoid_from_stature) at
+  // kBodyFps, the set's upper body playing.
+  std::vector<body::BodyPose> body;
+  double walk_ms = 0.0;  // wall time of the walk, of posing the body and of measuring
+  double body_ms = 0.0;
   double measure_ms = 0.0;
 };
 
@@ -55,8 +64,9 @@ gait::Walker make_walker(const gait::ControllerSet& set, const WalkSettings& set
 Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
             const terrain::Terrain& ground, const eval::Normative& reference);
 
-// The page's view: frames at kPageFps (time, pelvis, both legs' points, contacts),
-// the ground under the walk, the mean curves with their scores, the figures and the warnings.
+// The page's view: frames at kPageFps (time, pelvis, both legs' points, contacts), the body's
+// joints at kBodyFps, the ground under the walk, the mean curves with their scores, the figures
+// and the warnings.
 nlohmann::json walk_json(const Walked& walked, const terrain::Terrain& ground);
 nlohmann::json reference_json(const eval::Normative& reference);
 

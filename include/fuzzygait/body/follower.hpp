@@ -64,6 +64,10 @@ class PathFollower {
   double pelvis_drop() const noexcept { return drop_; }
   const Humanoid& humanoid() const noexcept { return humanoid_; }
 
+  // The metrics an upper body controller reads of leg `leg` (0 left, 1 right) of the walker now:
+  // delta, other_delta, hip, knee, ankle, toe and pace; the ground's left 0.
+  static gait::MetricValues leg_metrics(const gait::Walker& walker, int leg) noexcept;
+
  private:
   // A ground frame of a foot: where the walker's sagittal x `anchor` lies on the ground, and the
   // heading the sagittal plane takes there.
@@ -88,8 +92,6 @@ class PathFollower {
   };
 
   FootFrame path_frame(double x, double lateral) const noexcept;
-  // The metrics an upper body controller reads of leg `leg` (the ground's left 0: refused).
-  static gait::MetricValues leg_metrics(const gait::Walker& walker, int leg) noexcept;
   // The set's answer for `part` from a leg's metrics, as its controller gives it; 0 without one.
   double upper_body_answer(const gait::ControllerSet& set, gait::UpperBody part,
                            const gait::MetricValues& metrics) noexcept;
