@@ -79,7 +79,9 @@ class PathFollower {
   struct FootState {
     bool locked = false;
     bool releasing = false;
-    FootFrame frame;           // locked: the stance frame
+    FootFrame frame;      // locked: the stance frame
+    Vec3 locked_forward;  // locked: its heading's forward and yaw, kept from the landing
+    Quat locked_yaw;
     FootFrame drawn;           // the frame the foot was drawn in at the last update
     double release_x = 0.0;    // the heel's x when it lifted
     double release_way = 0.0;  // from there to the swing's target then (m, at least 0.05)

@@ -165,24 +165,27 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
     FootState& foot_state = feet_[static_cast<std::size_t>(i)];
     const rig::LegPoints points = walker.points(side);
     const double lateral = (side == rig::Side::Left ? 0.5 : -0.5) * step_width_;
-    const FootFrame on_path = path_frame(points.heel.x, lateral);
+    // A foot that stays planted stands in its locked frame: the path's frame under it is not
+    // needed, nor its heading's sines (kept from the landing).
+    const bool planted = walker.in_contact(side);
+    const bool stays = planted && foot_state.locked;
+    const FootFrame on_path = stays ? foot_state.frame : path_frame(points.heel.x, lateral);
     FootFrame frame = on_path;
-    if (walker.in_contact(side)) {
-      if (!foot_state.locked) {
-        // Landed: it stays where it is drawn now; still easing from its last stance frame, that
-        // is the frame it was drawn in, carried to this heel.
-        foot_state.locked = true;
-        foot_state.frame = on_path;
-        if (foot_state.releasing) {
-          const FootFrame& d = foot_state.drawn;
-          const Vec3 ahead = (points.heel.x - d.anchor) * forward_of(d.heading);
-          foot_state.frame = {
-              {d.origin.x + ahead.x, d.origin.z + ahead.z}, d.heading, points.heel.x};
-        }
-        foot_state.releasing = false;
+    if (planted && !stays) {
+      // Landed: it stays where it is drawn now; still easing from its last stance frame, that
+      // is the frame it was drawn in, carried to this heel.
+      foot_state.locked = true;
+      foot_state.frame = on_path;
+      if (foot_state.releasing) {
+        const FootFrame& d = foot_state.drawn;
+        const Vec3 ahead = (points.heel.x - d.anchor) * forward_of(d.heading);
+        foot_state.frame = {{d.origin.x + ahead.x, d.origin.z + ahead.z}, d.heading, points.heel.x};
       }
+      foot_state.releasing = false;
+      foot_state.locked_forward = forward_of(foot_state.frame.heading);
+      foot_state.locked_yaw = yaw(foot_state.frame.heading);
       frame = foot_state.frame;
-    } else {
+    } else if (!planted) {
       if (foot_state.locked) {
         // Lifted: keep how far the stance frame is off the path's here, in the path's frame.
         const FootFrame& from = foot_state.frame;
@@ -216,7 +219,8 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
       }
     }
     foot_state.drawn = frame;
-    const Vec3 forward = forward_of(frame.heading);
+    const bool locked = foot_state.locked;
+    const Vec3 forward = locked ? foot_state.locked_forward : forward_of(frame.heading);
     auto world = [&](rig::Point p) {
       return Vec3{frame.origin.x, 0.0, frame.origin.z} + (p.x - frame.anchor) * forward + p.y * kUp;
     };
@@ -226,7 +230,7 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
     const double hl = std::hypot(hx, hy);
     const rig::Point square = hl > 0.0 ? rig::Point{-hy / hl, hx / hl} : rig::Point{1.0, 0.0};
     const rig::LegOrientation o = rig::orientation(sagittal.pelvis_tilt, sagittal.legs[i]);
-    const Quat heading = yaw(frame.heading);
+    const Quat heading = locked ? foot_state.locked_yaw : yaw(frame.heading);
     legs[static_cast<std::size_t>(i)] = {world(points.ankle),
                                          square.x * forward + square.y * kUp,
                                          forward,
