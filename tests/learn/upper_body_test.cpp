@@ -70,7 +70,8 @@ gait::ControllerSet scaled_upper_body(const gait::ControllerSet& set, double fac
     fuzzy::Engine engine = controller->engine();
     for (fuzzy::Term& t : engine.outputs[0].terms)
       t.parameters[0] = factor * t.parameters[0] + (factor == 1.0 ? 0.0 : 1.0);
-    controller.emplace(std::move(engine), controller->source());
+    const std::string source = controller->source();  // (emplace destroys the old one first)
+    controller.emplace(std::move(engine), source);
   }
   return out;
 }
