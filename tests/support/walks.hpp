@@ -43,6 +43,19 @@ inline std::string state_difference(const gait::WalkerState& a, const gait::Walk
   if (a.lead != b.lead) return "lead";
   if (differ(a.fall_velocity, b.fall_velocity)) return "fall velocity";
   if (a.heel_strikes != b.heel_strikes) return "heel strikes";
+  if (a.locomotion != b.locomotion) return "locomotion";
+  if (a.placed_leg != b.placed_leg) return "placed leg";
+  if (a.go_when_standing != b.go_when_standing) return "go when standing";
+  if (differ(a.brake_distance, b.brake_distance)) return "brake distance";
+  if (differ(a.pelvis_velocity.x, b.pelvis_velocity.x) ||
+      differ(a.pelvis_velocity.y, b.pelvis_velocity.y)) {
+    return "pelvis velocity";
+  }
+  if (differ(a.start_tempo, b.start_tempo)) return "start tempo";
+  if (differ(a.placed_from.x, b.placed_from.x) || differ(a.placed_from.y, b.placed_from.y) ||
+      differ(a.placed_pitch, b.placed_pitch) || differ(a.placed_duration, b.placed_duration)) {
+    return "placed step";
+  }
   for (std::size_t k = 0; k < 2; ++k) {
     const gait::LegState& l = a.legs[k];
     const gait::LegState& m = b.legs[k];

@@ -71,6 +71,10 @@ class Crowd {
   // Walker::set_speed() of character i: the speed now commanded, or NaN (nothing changed) when i
   // is not a character of the crowd.
   double set_speed(std::size_t i, double metres_per_second) noexcept;
+  // Walker::stop() and Walker::go() of character i; false (nothing changed) when i is not a
+  // character.
+  bool stop(std::size_t i) noexcept;
+  bool go(std::size_t i) noexcept;
   // Every character's Walker::clear_events().
   void clear_events() noexcept;
 

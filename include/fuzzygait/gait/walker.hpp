@@ -53,6 +53,17 @@ const char* name(Phase phase);
 enum class Event : std::uint8_t { HeelStrike, ForefootStrike, FootFlat, HeelOff, ToeOff };
 const char* name(Event event);
 
+// What the walker as a whole is doing.
+enum class Locomotion : std::uint8_t {
+  Walking,
+  // Asked to stop: the next foot to lift is the closing step, put down beside the planted foot
+  // while the planted leg brakes the body over it.
+  Stopping,
+  // Both feet planted: the body settles over them and then stands still.
+  Standing,
+};
+const char* name(Locomotion locomotion);
+
 struct LegState {
   Phase phase = Phase::Swing;
   rig::LegAngles angles;     // radians
@@ -86,6 +97,24 @@ struct WalkerState {
   int lead = 0;                // leg whose planted foot carries the pelvis; -1 while airborne
   double fall_velocity = 0.0;  // m/s, while airborne (only after awkward starts)
   std::uint32_t heel_strikes = 0;
+  Locomotion locomotion = Locomotion::Walking;
+  // The leg whose step is placed rather than swung by its controllers, while it is in the air:
+  // stopping, the closing step; starting, the first step.
+  int placed_leg = -1;
+  bool go_when_standing = false;  // go() came while a closing step was in the air
+  // Stopping: how far the pelvis had to go to stand over the planted foot when the closing step
+  // lifted (m); the planted leg brakes in proportion to what is left of it.
+  double brake_distance = 0.0;
+  // The placed step: where its heel and the foot's pitch (rad) were when it lifted, and how long
+  // it lasts (s).
+  rig::Point placed_from;
+  double placed_pitch = 0.0;
+  double placed_duration = 0.0;
+  // The pelvis's velocity (m/s), measured while stopping and standing: the body settles from it.
+  rig::Point pelvis_velocity;
+  // Starting from standing, the share of their tempo at which the controllers play, rising to 1
+  // (the first steps accelerate the body from rest); 1 while walking.
+  double start_tempo = 1.0;
 };
 
 struct StartPose {
@@ -96,6 +125,9 @@ struct StartPose {
   // The default start walks this long (s) before time 0 on level ground, so that the character
   // starts in its own steady gait; 0 starts straight from the mid-stride pose.
   double warm_up = 3.0;
+  // Standing still, the feet side by side under the pelvis at x = 0 (random and warm_up are then
+  // ignored): the walker stands until go().
+  bool standing = false;
 };
 
 struct WalkerOptions {
@@ -155,6 +187,18 @@ class Walker {
   // set's acceleration, each step the stride relation's at the speed reached. Returns the speed
   // now commanded; NaN, changing nothing, for NaN or a set without a stride relation.
   double set_speed(double metres_per_second) noexcept;
+  // Stops on the spot: the next foot to lift closes beside the planted one while the planted leg
+  // brakes the body over it; the walker then stands, both feet planted, its body settling over
+  // them (about a step and a half from a walk: standing() then). The pace commanded is kept for
+  // go(). Nothing while standing or already stopping.
+  void stop() noexcept;
+  // Walks on from standing: the foot further behind (the left, side by side) steps first, a short
+  // step, the body accelerating from rest over the first steps at the pace commanded. Stopping,
+  // the stop is called off; once the closing step is in the air, the walker walks on as soon as
+  // it stands still. Nothing while walking.
+  void go() noexcept;
+  Locomotion locomotion() const noexcept { return state_.locomotion; }
+  bool standing() const noexcept { return state_.locomotion == Locomotion::Standing; }
   // The step the next foot placement takes (m).
   double step_length() const noexcept;
   // The speed commanded (m/s): by step length, the step at the set's cadence.
@@ -212,10 +256,17 @@ class Walker {
   Walker(const ControllerSet& controllers, const WalkerOptions& options,
          const terrain::Terrain& terrain, const detail::ControllerBackend* backend);
   void start(const StartPose& start_pose);
+  void start_standing();
   void warm_up(double seconds);
+  void stand(double h);
+  rig::Point standing_pelvis() const;
+  rig::Point flat_ankle(const LegState& l) const;
+  double braking_speed() const;
+  bool place_step(int leg, double h);
   void record(rig::Side side, Event event, rig::Point where);
   void strike(int leg, Phase phase, rig::Point contact);
   void lift_off(int leg);
+  void lift_off(int leg, double step);
   double stride_step_at(double speed) const;
   double step_speed() const;
   double tempo();

@@ -141,6 +141,18 @@ double Crowd::set_speed(std::size_t i, double metres_per_second) noexcept {
   return walkers_[i].set_speed(metres_per_second);
 }
 
+bool Crowd::stop(std::size_t i) noexcept {
+  if (i >= walkers_.size()) return false;
+  walkers_[i].stop();
+  return true;
+}
+
+bool Crowd::go(std::size_t i) noexcept {
+  if (i >= walkers_.size()) return false;
+  walkers_[i].go();
+  return true;
+}
+
 void Crowd::clear_events() noexcept {
   for (Walker& w : walkers_)
     w.clear_events();

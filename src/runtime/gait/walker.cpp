@@ -97,6 +97,32 @@ constexpr double kStraightLanding = 0.02;
 // m: a toe tip this close to the ground rests on it.
 constexpr double kToesResting = 0.0005;
 constexpr double kLongestTimeStep = 0.05;
+// Standing and starting. People stand with the knee nearly straight (a few degrees of flexion);
+// a stopped body settles over its feet, critically damped at this rate (rad/s: within 5 % of
+// rest in about 0.7 s); a foot that lands as the walk stops comes down flat no faster than a
+// loading response lowers it (rad/s).
+constexpr double kStandingKnee = rig::radians(4.0);
+constexpr double kSettleRate = 7.0;
+constexpr double kFootSettling = rig::radians(120.0);
+// Within this (m) the feet stand side by side: the left steps first.
+// A stop's closing step lasts as long as the body takes to brake over the planted foot, within
+// these (s; people's swing lasts 0.35 to 0.45 s).
+constexpr double kShortestClosingStep = 0.35;
+constexpr double kLongestClosingStep = 0.6;
+// How high a closing step lifts the heel mid-way, in leg lengths (the knee folds as it lifts).
+constexpr double kClosingLift = 0.12;
+// A start's first step: its swing lasts this long (s) and lands on the heel with the sole this
+// far from the ground's slope, the foot pointing this much further down mid-way (rad).
+constexpr double kFirstSwing = 0.5;
+constexpr double kFirstStepHeelPitch = rig::radians(15.0);
+constexpr double kFirstStepDip = rig::radians(25.0);
+constexpr double kSideBySide = 0.01;
+// Gait initiation: the first step is this share of the commanded one (people's first step is
+// shorter), and the controllers start at this share of their tempo, rising to all of it over
+// kStartEasing seconds (about the first two steps), so the body accelerates from rest.
+constexpr double kFirstStep = 0.8;
+constexpr double kStartTempo = 0.4;
+constexpr double kStartEasing = 1.0;
 
 // Between `good` (passes `ok`) and `bad` (fails it), the value nearest `bad` that still passes,
 // to 40 halvings.
@@ -175,6 +201,18 @@ const char* name(Phase phase) {
       return "flat";
     case Phase::Ball:
       return "ball";
+  }
+  return "?";
+}
+
+const char* name(Locomotion locomotion) {
+  switch (locomotion) {
+    case Locomotion::Walking:
+      return "walking";
+    case Locomotion::Stopping:
+      return "stopping";
+    case Locomotion::Standing:
+      return "standing";
   }
   return "?";
 }
@@ -321,6 +359,51 @@ double Walker::set_speed(double metres_per_second) noexcept {
   return speed_target_;
 }
 
+void Walker::stop() noexcept {
+  if (state_.locomotion != Locomotion::Walking) return;
+  state_.locomotion = Locomotion::Stopping;
+  state_.placed_leg = -1;
+}
+
+void Walker::go() noexcept {
+  WalkerState& s = state_;
+  if (s.locomotion == Locomotion::Walking) return;
+  if (s.locomotion == Locomotion::Stopping) {
+    // Before the closing step lifts, the stop is called off; after, the walker walks on once it
+    // stands still.
+    if (s.placed_leg < 0) {
+      s.locomotion = Locomotion::Walking;
+    } else {
+      s.go_when_standing = true;
+    }
+    return;
+  }
+  s.go_when_standing = false;
+  const int stepping =
+      points(rig::Side::Right).heel.x < points(rig::Side::Left).heel.x - kSideBySide ? 1 : 0;
+  const int standing = 1 - stepping;
+  LegState& stance = s.legs[static_cast<std::size_t>(standing)];
+  s.locomotion = Locomotion::Walking;
+  s.lead = standing;
+  s.start_tempo = kStartTempo;
+  s.heel_strikes = 0;
+  s.pelvis_velocity = {};
+  // The standing leg is at mid-stance (delta 0): its sweep ends where a stance of this step
+  // ends and begins as far ahead of the thigh.
+  stance.strike_time = s.time;
+  stance.sweep_end = stance_target();
+  stance.sweep_start = 2.0 * thigh_of(s.pelvis_tilt, stance.angles) - stance.sweep_end;
+  for (LegState& l : s.legs)
+    l.velocity = LegAngles{};
+  LegState& step = s.legs[static_cast<std::size_t>(stepping)];
+  const LegPoints from = points(static_cast<rig::Side>(stepping));
+  lift_off(stepping, std::max(min_step_length(), kFirstStep * step_length()));
+  s.placed_leg = stepping;
+  s.placed_from = from.heel;
+  s.placed_pitch = foot_of(s.pelvis_tilt, step.angles);
+  s.placed_duration = kFirstSwing;
+}
+
 double Walker::step_length() const noexcept {
   return by_speed_ ? stride_step_at(state_.speed) : step_length_;
 }
@@ -352,14 +435,15 @@ double Walker::max_speed() const noexcept {
 
 // The cadence the controllers play at over the set's: 1 walking by step length, speed / step
 // over the set's cadence walking by speed.
+// Starting from standing, times the start's share (start_tempo).
 double Walker::tempo() {
-  if (!by_speed_) return 1.0;
+  if (!by_speed_) return state_.start_tempo;
   if (!(state_.speed == tempo_speed_) || !(state_.tempo_gain == tempo_gain_)) {
     tempo_speed_ = state_.speed;
     tempo_gain_ = state_.tempo_gain;
     tempo_ = state_.speed / step_length() * 60.0 / controllers_->cadence * state_.tempo_gain;
   }
-  return tempo_;
+  return tempo_ * state_.start_tempo;
 }
 
 rig::Pose Walker::pose() const noexcept {
@@ -435,6 +519,10 @@ void Walker::start(const StartPose& start_pose) {
   const double reference = 0.70 / rig::segments_from_stature(1.75).leg_length();
   state_.speed = speed_target_;
   const double scale = std::clamp(step_length() / segments_.leg_length() / reference, 0.5, 1.5);
+  if (start_pose.standing) {
+    start_standing();
+    return;
+  }
   if (start_pose.random) {
     // Seeds hashed apart first, so nearby seeds do not walk the same sequence.
     std::uint64_t x = (start_pose.seed ^ 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull;
@@ -532,6 +620,186 @@ void Walker::start(const StartPose& start_pose) {
   state_.heel_strikes = 0;
 }
 
+// Both feet flat side by side, their ankles under the pelvis at x = 0, the legs as people stand.
+void Walker::start_standing() {
+  const rig::Segments& s = segments_;
+  const rig::detail::SinCos ground = sin_cos(terrain_->slope(0.0));
+  const double heel_x = -(s.heel * ground.cos - s.ankle_height * ground.sin);
+  for (LegState& l : state_.legs) {
+    l.phase = Phase::Flat;
+    l.anchor = {heel_x, terrain_->height(heel_x)};
+    l.strike_x = heel_x;
+    l.step_from_x = heel_x;
+    l.target_x = heel_x;
+    l.target_run = terrain_->run_at(heel_x);
+    l.angles = {state_.pelvis_tilt, kStandingKnee, 0.0, 0.0};
+  }
+  state_.pelvis = standing_pelvis();
+  for (int leg = 0; leg < 2; ++leg)
+    close_chain(leg);
+  state_.lead = 1;
+  state_.locomotion = Locomotion::Standing;
+  events_.clear();
+}
+
+// Stopping with the closing step in the air: the fastest the pelvis may move on (m/s), slowing
+// evenly from the walk's speed to rest over the planted foot, as a body braking at a constant
+// rate does; infinity otherwise.
+double Walker::braking_speed() const {
+  const WalkerState& s = state_;
+  if (s.locomotion != Locomotion::Stopping || s.placed_leg < 0 || s.lead < 0 ||
+      s.lead == s.placed_leg) {
+    return std::numeric_limits<double>::infinity();
+  }
+  const double left = flat_ankle(s.legs[static_cast<std::size_t>(s.lead)]).x - s.pelvis.x;
+  return s.speed * std::sqrt(std::clamp(left / s.brake_distance, 0.0, 1.0));
+}
+
+// A time step of a placed step (the leg `leg`, swinging): a stop's closing step or a start's first
+// step. The foot is carried from where it lifted to its target over placed_duration along a
+// minimum-jerk path, the heel lifted kClosingLift mid-way and kept clear of the ground, its sole
+// turning to its landing pitch by four fifths of the way (level for a closing step, on the heel
+// for a first step); hip and knee reach its ankle (two-link IK, the knee forward), the toes
+// straighten. True once it is down.
+bool Walker::place_step(int leg, double h) {
+  WalkerState& s = state_;
+  LegState& l = s.legs[static_cast<std::size_t>(leg)];
+  const rig::Segments& g = segments_;
+  auto minimum_jerk = [](double u) { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); };
+  const double u = std::clamp((s.time + h - l.swing_start) / s.placed_duration, 0.0, 1.0);
+  const double along = minimum_jerk(u);
+  // A first step lands on its heel, the toes up, its foot pointing down mid-way as people's does.
+  const bool first = s.locomotion == Locomotion::Walking;
+  // (A first step's foot leaves the ground from rest; a closing step's heel is rising already.)
+  const double arc = std::sin(std::numbers::pi * u);
+  const double lift = first ? arc * arc : arc;
+  const double slope = terrain_->slope(l.target_x);
+  const double landing = first ? slope + kFirstStepHeelPitch : slope;
+  const double pitch = s.placed_pitch +
+                       (landing - s.placed_pitch) * minimum_jerk(std::min(1.0, u / 0.8)) -
+                       (first ? kFirstStepDip * lift : 0.0);
+  const double ground_y = terrain_->height(terrain_->point_on_run(l.target_x, l.target_run));
+  const rig::detail::SinCos sole = sin_cos(pitch);
+  const double sole_length = g.heel + g.ball;
+  Point heel{s.placed_from.x + (l.target_x - s.placed_from.x) * along,
+             s.placed_from.y + (ground_y - s.placed_from.y) * along +
+                 kClosingLift * g.leg_length() * lift};
+  // Heel and ball above the ground until the landing (kSwingClearance mid-way); the toes bend up
+  // where it holds them (finish_step()).
+  const double lowest = std::min(0.0, sole_length * sole.sin);
+  const double under =
+      std::max(terrain_->height(heel.x), terrain_->height(heel.x + sole_length * sole.cos));
+  const double clear = under + kSwingClearance * lift;
+  if (u < 1.0) heel.y = std::max(heel.y, clear - lowest);
+  const Point ankle{heel.x + g.heel * sole.cos - g.ankle_height * sole.sin,
+                    heel.y + g.heel * sole.sin + g.ankle_height * sole.cos};
+  const Point hip = s.pelvis;
+  const double towards = inclination(hip, ankle);
+  const double distance = std::clamp(std::hypot(ankle.x - hip.x, ankle.y - hip.y),
+                                     std::abs(g.thigh - g.shank) + 1e-9, g.thigh + g.shank - 1e-9);
+  const double opening = arccos(std::clamp(
+      (g.thigh * g.thigh + distance * distance - g.shank * g.shank) / (2.0 * g.thigh * distance),
+      -1.0, 1.0));
+  const double thigh = towards + opening;
+  const rig::detail::SinCos t = sin_cos(thigh);
+  const Point knee{hip.x + g.thigh * t.sin, hip.y - g.thigh * t.cos};
+  const Point reached{hip.x + distance * std::sin(towards), hip.y - distance * std::cos(towards)};
+  const double shank = inclination(knee, reached);
+  l.angles.hip = thigh + s.pelvis_tilt;
+  l.angles.knee = std::max(0.0, thigh - shank);
+  l.angles.ankle = pitch - (thigh - l.angles.knee);
+  const double toe_step = kFootSettling * h;
+  l.angles.toe = std::clamp(0.0, l.angles.toe - toe_step, l.angles.toe + toe_step);
+  if (u < 1.0) return false;
+  l.angles.toe = 0.0;
+  const LegPoints p = WalkerStages::leg_points(*this, leg, s.pelvis, l.angles);
+  strike(leg, first ? Phase::Heel : Phase::Flat, {p.heel.x, ground_y});
+  return true;
+}
+
+// Where a planted foot's ankle is once the foot is flat.
+Point Walker::flat_ankle(const LegState& l) const {
+  const rig::Segments& s = segments_;
+  const double sole = s.heel + s.ball;
+  const rig::detail::SinCos ground = sin_cos(terrain_->slope(l.anchor.x));
+  const Point heel = l.phase == Phase::Ball
+                         ? Point{l.anchor.x - sole * ground.cos, l.anchor.y - sole * ground.sin}
+                         : l.anchor;
+  return {heel.x + s.heel * ground.cos - s.ankle_height * ground.sin,
+          heel.y + s.heel * ground.sin + s.ankle_height * ground.cos};
+}
+
+// Where the pelvis stands over the planted feet: over their ankles (as they stand once flat),
+// as high as leaves both knees kStandingKnee bent.
+Point Walker::standing_pelvis() const {
+  const rig::Segments& s = segments_;
+  const std::array<Point, 2> ankle = {flat_ankle(state_.legs[0]), flat_ankle(state_.legs[1])};
+  const double x = 0.5 * (ankle[0].x + ankle[1].x);
+  const rig::detail::SinCos knee = sin_cos(kStandingKnee);
+  const double reach =
+      std::sqrt(s.thigh * s.thigh + s.shank * s.shank + 2.0 * s.thigh * s.shank * knee.cos);
+  double y = std::numeric_limits<double>::infinity();
+  for (const Point& a : ankle) {
+    const double dx = std::min(std::abs(x - a.x), reach);
+    y = std::min(y, a.y + std::sqrt(reach * reach - dx * dx));
+  }
+  return {x, y};
+}
+
+// A time step standing: the pelvis settles toward standing_pelvis() from the velocity it had, a
+// foot not yet flat comes down, and both legs close their chains onto their feet (IK).
+void Walker::stand(double h) {
+  WalkerState& s = state_;
+  const Point rest = standing_pelvis();
+  const bool flat = s.legs[0].phase == Phase::Flat && s.legs[1].phase == Phase::Flat;
+  if (flat && s.pelvis.x == rest.x && s.pelvis.y == rest.y) return;  // standing still
+  const double w = kSettleRate;
+  s.pelvis_velocity.x += h * (w * w * (rest.x - s.pelvis.x) - 2.0 * w * s.pelvis_velocity.x);
+  s.pelvis_velocity.y += h * (w * w * (rest.y - s.pelvis.y) - 2.0 * w * s.pelvis_velocity.y);
+  s.pelvis.x += h * s.pelvis_velocity.x;
+  s.pelvis.y += h * s.pelvis_velocity.y;
+  if (flat && std::hypot(rest.x - s.pelvis.x, rest.y - s.pelvis.y) < 1e-7 &&
+      std::hypot(s.pelvis_velocity.x, s.pelvis_velocity.y) < 1e-6) {
+    s.pelvis = rest;
+    s.pelvis_velocity = {};
+  }
+  const double tilt = s.pelvis_tilt;
+  const double sole_length = segments_.heel + segments_.ball;
+  for (int leg = 0; leg < 2; ++leg) {
+    LegState& l = s.legs[static_cast<std::size_t>(leg)];
+    if (l.phase != Phase::Flat) {
+      const double slope = sole_angle(l);
+      const double foot = foot_of(tilt, l.angles);
+      const double most = kFootSettling * h;
+      if (std::abs(foot - slope) <= most) {
+        if (l.phase == Phase::Ball) {
+          const rig::detail::SinCos ground = sin_cos(slope);
+          l.anchor = {l.anchor.x - sole_length * ground.cos, l.anchor.y - sole_length * ground.sin};
+        }
+        l.phase = Phase::Flat;
+        record(static_cast<rig::Side>(leg), Event::FootFlat, l.anchor);
+      } else {
+        l.angles.ankle += foot > slope ? -most : most;
+      }
+    }
+    if (!close_chain(leg)) {
+      // Out of reach (a foot not yet flat, the body still moving away from it): the pelvis
+      // lowers just as far as the leg reaches.
+      const double high = s.pelvis.y;
+      s.pelvis.y = bisect(high - segments_.leg_length(), high, [&](double y) {
+        s.pelvis.y = y;
+        return close_chain(leg);
+      });
+      s.pelvis_velocity.y = std::min(s.pelvis_velocity.y, 0.0);
+      if (!close_chain(leg) || (leg == 1 && !close_chain(0))) {
+        s.pelvis.y = high - segments_.leg_length();
+        close_chain(0);
+        close_chain(1);
+      }
+    }
+  }
+}
+
 // Walks `seconds` on level ground at the start's height, then brings that walk back to x = 0:
 // the character starts in its own steady gait rather than from a pose it never takes.
 void Walker::warm_up(double seconds) {
@@ -602,6 +870,10 @@ void Walker::hand_over(int leg) {
 }
 
 void Walker::lift_off(int leg) {
+  lift_off(leg, step_length());
+}
+
+void Walker::lift_off(int leg, double step) {
   LegState& l = state_.legs[static_cast<std::size_t>(leg)];
   const LegPoints p = WalkerStages::leg_points(*this, leg, state_.pelvis, l.angles);
   if (l.phase != Phase::Swing) record(static_cast<rig::Side>(leg), Event::ToeOff, p.tip);
@@ -614,10 +886,23 @@ void Walker::lift_off(int leg) {
   const double from = other ? other->strike_x : p.heel.x;
   // A step of the commanded length along the ground, moved to where the whole foot stands on one
   // tread, at most a stair up or down from the tread the other foot stands on.
-  const terrain::Terrain::Foothold target = terrain_->foothold(
-      other ? other->anchor.x : from, terrain_->ahead_along_ground(from, step_length()),
-      segments_.foot_length(), kFootholdMargin, min_step_length());
   l.step_from_x = l.strike_x;
+  if (state_.locomotion == Locomotion::Stopping && other) {
+    // The closing step: heel beside the planted heel, on its run; the planted leg brakes the
+    // body until it stands over that foot.
+    l.target_x = other->strike_x;
+    l.target_run = terrain_->run_at(other->anchor.x);
+    state_.placed_leg = leg;
+    state_.brake_distance = std::max(flat_ankle(*other).x - state_.pelvis.x, 1e-3);
+    state_.placed_from = p.heel;
+    state_.placed_pitch = foot_of(state_.pelvis_tilt, l.angles);
+    state_.placed_duration = std::clamp(2.0 * state_.brake_distance / std::max(state_.speed, 0.1),
+                                        kShortestClosingStep, kLongestClosingStep);
+    return;
+  }
+  const terrain::Terrain::Foothold target =
+      terrain_->foothold(other ? other->anchor.x : from, terrain_->ahead_along_ground(from, step),
+                         segments_.foot_length(), kFootholdMargin, min_step_length());
   l.target_x = target.heel_x;
   l.target_run = target.run;
 }
@@ -756,7 +1041,9 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
       break;
     case Phase::Flat: {
       const double flat = slope - shank_of(tilt, l.angles);
-      if (commanded.ankle < flat) {
+      // (Braking for a stop, the heel stays down.)
+      const bool braking = state_.locomotion == Locomotion::Stopping && state_.placed_leg >= 0;
+      if (commanded.ankle < flat && !braking) {
         // The controller lets the ankle dorsiflex slower than the shank rolls over the foot:
         // the heel lifts (the calf holds the shin back).
         l.phase = Phase::Ball;
@@ -872,16 +1159,17 @@ FUZZYGAIT_ALWAYS_INLINE void WalkerStages::update_metrics(Walker& w, int leg, co
     // (A heel reaching over a tread's edge aims at the tread's height, not at the ground below.)
     const Point target{l.target_x,
                        w.terrain_->height(w.terrain_->point_on_run(l.target_x, l.target_run))};
-    end = inclination(p.hip, target) + w.heel_offset_;
+    const Point hip = p.hip;
+    end = inclination(hip, target) + w.heel_offset_;
     if (landing_knee > 0.0) {
       // The thigh's angle to the hip-heel line of a leg landing with its knee bent so.
       const LegPoints bent =
           rig::forward_kinematics(w.segments_, {0.0, 0.0}, 0.0, LegAngles{0.0, landing_knee});
-      end = inclination(p.hip, target) - inclination(bent.hip, bent.heel);
+      end = inclination(hip, target) - inclination(bent.hip, bent.heel);
     }
     if (ascent > 0.0) {
-      const double within = w.reach_ - std::hypot(target.x - p.hip.x, target.y - p.hip.y);
-      const double bent = knee_end_thigh(w, leg, p.hip, target);
+      const double within = w.reach_ - std::hypot(target.x - hip.x, target.y - hip.y);
+      const double bent = knee_end_thigh(w, leg, hip, target);
       const double weight = ascent * std::clamp(within / kStraightLanding - 1.0, 0.0, 1.0);
       if (weight > 0.0 && !std::isnan(bent)) end += weight * (bent - end);
     }
@@ -1092,6 +1380,14 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
     w.follow_tempo_ = tempo;
     w.follow_ = detail::follow_share(h, w.controllers_->inertia / tempo);
   }
+  if (w.state_.locomotion == Locomotion::Standing) {
+    // Standing: no controller moves a joint (finish_step() stands the legs).
+    for (std::size_t leg = 0; leg < 2; ++leg) {
+      d.previous[leg] = w.state_.legs[leg].angles;
+      d.commanded[leg] = w.state_.legs[leg].angles;
+    }
+    return;
+  }
   const double follow = w.follow_;
   const Joints minimum = joints(w.limits_.minimum);
   const Joints maximum = joints(w.limits_.maximum);
@@ -1115,10 +1411,11 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
     // The hip's command is a share of the sweep per second, the others degrees per second, at
     // the set's cadence.
     const double per_degree_now = per_degree * tempo;
-    const Joints target{
+    Joints target{
         JointPair{c[0], c[1] * per_degree_now} *
             JointPair{detail::sweep_scale(l.sweep_start, l.sweep_end) * tempo, knee_scale},
         JointPair{c[2], c[3]} * per_degree_now};
+
     Joints velocity = joints(l.velocity);
     Joints angles = joints(l.angles);
     detail::follow_command(target.hip_knee, velocity.hip_knee, angles.hip_knee, follow, h,
@@ -1149,7 +1446,10 @@ void WalkerStages::integrate(Walker& w, double h, StepData& d) {
   }
 }
 
-void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
+// The body carried by the leg planted first, the swinging leg's flight and landing, and the
+// double support's hand-over.
+void WalkerStages::carry(Walker& w, double h, const StepData& d,
+                         std::array<std::optional<double>, 2>& placed_tip_ground) {
   const double tilt = w.state_.pelvis_tilt;
   const std::array<LegAngles, 2>& previous = d.previous;
   const std::array<LegAngles, 2>& commanded = d.commanded;
@@ -1166,15 +1466,40 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
       w.keep_knee_up(lead, previous[static_cast<std::size_t>(lead)].knee);
       at_origin = hip_at_origin(w, lead);
     }
+    const Point before = w.state_.pelvis;
+    const double braking_speed = w.braking_speed();
     place_pelvis(w, lead, at_origin);
+    const double moved = w.state_.pelvis.x - before.x;
+    if (moved > braking_speed * h) {
+      // Braking for a stop: the carrying leg's joints move only as far as takes the pelvis
+      // braking_speed on.
+      const double share = braking_speed * h / moved;
+      const Joints from = joints(previous[static_cast<std::size_t>(lead)]);
+      LegAngles& angles = w.state_.legs[static_cast<std::size_t>(lead)].angles;
+      const Joints to = joints(angles);
+      const JointPair by{share, share};
+      store(angles, {from.hip_knee + (to.hip_knee - from.hip_knee) * by,
+                     from.ankle_toe + (to.ankle_toe - from.ankle_toe) * by});
+      place_pelvis(w, lead, hip_at_origin(w, lead));
+    }
+    if (w.state_.locomotion == Locomotion::Stopping) {
+      w.state_.pelvis_velocity = {(w.state_.pelvis.x - before.x) / h,
+                                  (w.state_.pelvis.y - before.y) / h};
+    }
   }
-  // A swinging leg placed below with the pelvis carried by the other leg: its points stand (its
-  // heel and ball above the ground), and this is the ground's height under its toe tip.
-  std::array<std::optional<double>, 2> placed_tip_ground;
   for (int leg = 0; leg < 2; ++leg) {
     if (leg == w.state_.lead) continue;
     LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
-    if (l.phase == Phase::Swing) {
+    if (l.phase == Phase::Swing && leg == w.state_.placed_leg) {
+      // A stop's closing step or a start's first step: placed until it is down.
+      if (!w.place_step(leg, h)) break;
+      w.state_.placed_leg = -1;
+      if (w.state_.locomotion == Locomotion::Stopping) {
+        w.state_.locomotion = Locomotion::Standing;
+        break;
+      }
+      // (The first step is down on its heel: the double support goes on as after any step.)
+    } else if (l.phase == Phase::Swing) {
       // Swing foot: it lands once the leg arrives in front of the body; before that the knee
       // folds just enough to keep the foot off the ground (a clearance reflex), and only a foot
       // the reflex cannot lift touches down early.
@@ -1303,6 +1628,19 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
     }
     break;
   }
+}
+
+void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
+  const double tilt = w.state_.pelvis_tilt;
+  const std::array<LegAngles, 2>& previous = d.previous;
+  // A swinging leg placed below with the pelvis carried by the other leg: its points stand (its
+  // heel and ball above the ground), and this is the ground's height under its toe tip.
+  std::array<std::optional<double>, 2> placed_tip_ground;
+  if (w.state_.locomotion == Locomotion::Standing) {
+    w.stand(h);
+  } else {
+    carry(w, h, d, placed_tip_ground);
+  }
   for (int leg = 0; leg < 2; ++leg) {
     LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
     const std::optional<double> tip_ground = placed_tip_ground[static_cast<std::size_t>(leg)];
@@ -1336,6 +1674,15 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
   }
   w.end_points_valid_ = true;
   w.state_.time += h;
+  // A go() that came while the closing step was in the air, once the body stands still.
+  if (w.state_.go_when_standing && w.state_.locomotion == Locomotion::Standing &&
+      w.state_.pelvis_velocity.x == 0.0 && w.state_.pelvis_velocity.y == 0.0) {
+    w.go();
+  }
+  if (w.state_.start_tempo < 1.0) {
+    w.state_.start_tempo =
+        std::min(1.0, w.state_.start_tempo + h * (1.0 - kStartTempo) / kStartEasing);
+  }
   // Walking by speed, the speed moves toward the commanded one at the set's acceleration; by step
   // length it is the step's at the set's cadence at once (the tempo is 1).
   if (w.by_speed_) {

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <span>
 
 #include "fuzzygait/gait/crowd.hpp"
@@ -43,6 +44,8 @@ struct WalkerStages {
   static void command_on_terrain(Walker& w, StepData& d);
   static void integrate(Walker& w, double h, StepData& d);
   static void finish_step(Walker& w, double h, StepData& d);
+  static void carry(Walker& w, double h, const StepData& d,
+                    std::array<std::optional<double>, 2>& placed_tip_ground);
 
   // The stages' inline helpers (walker.cpp, the only file that calls them).
   // rig::forward_kinematics of a leg with its cached sines and cosines.
