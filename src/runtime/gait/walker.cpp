@@ -111,6 +111,8 @@ constexpr double kShortestClosingStep = 0.35;
 constexpr double kLongestClosingStep = 0.6;
 // How high a closing step lifts the heel mid-way, in leg lengths (the knee folds as it lifts).
 constexpr double kClosingLift = 0.12;
+// A placed step's knee stays bent at least this much in the air (rad), less towards the landing.
+constexpr double kPlacedKnee = rig::radians(15.0);
 // A start's first step: its swing lasts this long (s) and lands on the heel with the sole this
 // far from the ground's slope, the foot pointing this much further down mid-way (rad).
 constexpr double kFirstSwing = 0.5;
@@ -670,9 +672,11 @@ bool Walker::place_step(int leg, double h) {
   const double along = minimum_jerk(u);
   // A first step lands on its heel, the toes up, its foot pointing down mid-way as people's does.
   const bool first = s.locomotion == Locomotion::Walking;
-  // (A first step's foot leaves the ground from rest; a closing step's heel is rising already.)
+  // The lift (of kClosingLift) comes down with no speed at the landing; a first step's foot
+  // leaves the ground from rest, a closing step's heel is rising already (as fast as a walk's
+  // at toe off; it peaks at 0.58 a third of the way).
   const double arc = std::sin(std::numbers::pi * u);
-  const double lift = first ? arc * arc : arc;
+  const double lift = first ? arc * arc : arc * (1.0 - u);
   const double slope = terrain_->slope(l.target_x);
   const double landing = first ? slope + kFirstStepHeelPitch : slope;
   const double pitch = s.placed_pitch +
@@ -686,14 +690,27 @@ bool Walker::place_step(int leg, double h) {
                  kClosingLift * g.leg_length() * lift};
   // Heel and ball above the ground until the landing (kSwingClearance mid-way); the toes bend up
   // where it holds them (finish_step()).
-  const double lowest = std::min(0.0, sole_length * sole.sin);
-  const double under =
-      std::max(terrain_->height(heel.x), terrain_->height(heel.x + sole_length * sole.cos));
-  const double clear = under + kSwingClearance * lift;
-  if (u < 1.0) heel.y = std::max(heel.y, clear - lowest);
-  const Point ankle{heel.x + g.heel * sole.cos - g.ankle_height * sole.sin,
-                    heel.y + g.heel * sole.sin + g.ankle_height * sole.cos};
+  const double clearance = kSwingClearance * lift;
+  const double ball_x = heel.x + sole_length * sole.cos;
+  heel.y = std::max({heel.y, terrain_->height(heel.x) + clearance,
+                     terrain_->height(ball_x) - sole_length * sole.sin + clearance});
+  Point ankle{heel.x + g.heel * sole.cos - g.ankle_height * sole.sin,
+              heel.y + g.heel * sole.sin + g.ankle_height * sole.cos};
   const Point hip = s.pelvis;
+  // The knee stays bent in the air: an ankle beyond the reach of a knee bent kPlacedKnee (less
+  // and less towards the landing, and from none at a first step's start) is lifted within it, as
+  // a foot left behind a moving body is.
+  if (u < 1.0) {
+    const rig::detail::SinCos bend = sin_cos(kPlacedKnee * (first ? arc : 1.0 - u));
+    const double reach =
+        std::sqrt(g.thigh * g.thigh + g.shank * g.shank + 2.0 * g.thigh * g.shank * bend.cos);
+    const double dx = ankle.x - hip.x;
+    if (std::hypot(dx, ankle.y - hip.y) > reach && std::abs(dx) < reach) {
+      const double raise = hip.y - std::sqrt(reach * reach - dx * dx) - ankle.y;
+      heel.y += raise;
+      ankle.y += raise;
+    }
+  }
   const double towards = inclination(hip, ankle);
   const double distance = std::clamp(std::hypot(ankle.x - hip.x, ankle.y - hip.y),
                                      std::abs(g.thigh - g.shank) + 1e-9, g.thigh + g.shank - 1e-9);
@@ -758,8 +775,9 @@ void Walker::stand(double h) {
   s.pelvis_velocity.y += h * (w * w * (rest.y - s.pelvis.y) - 2.0 * w * s.pelvis_velocity.y);
   s.pelvis.x += h * s.pelvis_velocity.x;
   s.pelvis.y += h * s.pelvis_velocity.y;
-  if (flat && std::hypot(rest.x - s.pelvis.x, rest.y - s.pelvis.y) < 1e-7 &&
-      std::hypot(s.pelvis_velocity.x, s.pelvis_velocity.y) < 1e-6) {
+  // (Within 0.01 mm of rest at under 0.1 mm/s it is there: a step no one sees.)
+  if (flat && std::hypot(rest.x - s.pelvis.x, rest.y - s.pelvis.y) < 1e-5 &&
+      std::hypot(s.pelvis_velocity.x, s.pelvis_velocity.y) < 1e-4) {
     s.pelvis = rest;
     s.pelvis_velocity = {};
   }
@@ -1650,7 +1668,8 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
     if (!stands) p = leg_points(w, leg, w.state_.pelvis, l.angles);
     // A foot that has just lifted off can sit a hair below the ground once the other foot takes
     // the pelvis: lift it at once. (Its toe tip is left to the toes, which bend up below.)
-    if (!stands && l.phase == Phase::Swing && w.state_.lead >= 0 &&
+    // (A placed step keeps its foot where it is put: on the ground as it lands.)
+    if (!stands && l.phase == Phase::Swing && w.state_.lead >= 0 && leg != w.state_.placed_leg &&
         foot_depth(p, ground_under(*w.terrain_, p), false) > 0.0) {
       w.clear_ground(leg, w.limits_.maximum.knee, 0.0, false);
       p = leg_points(w, leg, w.state_.pelvis, l.angles);
