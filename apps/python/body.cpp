@@ -1,7 +1,8 @@
 // The whole body in Python: paths, the canonical humanoid, a follower that bends a walker's walk
 // onto a path, and a game's skeleton (from arrays or read from BVH, glTF or VRM) posed from it.
-// Arrays in and out are NumPy copies; quaternions are (w, x, y, z). A follower holds its path and
-// its walker's set (the C++ follower keeps pointers to both) and the walker it was made with.
+// Arrays in and out are NumPy copies; quaternions are (w, x, y, z). A follower keeps its Path and
+// the Walker it was made with alive (the C++ follower keeps pointers to the path and the walker's
+// set).
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -33,7 +34,7 @@ using HumanoidPtr = std::shared_ptr<body::Humanoid>;
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 struct Follower {
-  PathPtr path;
+  PathPtr path;       // (the Python Path is kept alive too: keep_alive)
   py::object walker;  // the Python Walker it was made with, which holds its set
   body::PathFollower follower;
 };
@@ -326,8 +327,9 @@ void bind_follower(py::module_& m) {
              return std::unique_ptr<Follower>(
                  new Follower{path, walker, body::PathFollower(h, *path, w.walker, o)});
            }),
-           py::arg("humanoid"), py::arg("path"), py::arg("walker"), py::kw_only(),
-           py::arg("step_width") = py::none(), py::arg("step_width_per_leg_length") = py::none(),
+           py::keep_alive<1, 3>(), py::arg("humanoid"), py::arg("path"), py::arg("walker"),
+           py::kw_only(), py::arg("step_width") = py::none(),
+           py::arg("step_width_per_leg_length") = py::none(),
            py::arg("swing_release") = body::FollowerOptions{}.swing_release,
            py::arg("look_ahead") = body::FollowerOptions{}.look_ahead, py::arg("upper_body") = true,
            "humanoid: the body (its legs the walker's), or None for Humanoid.from_walker(walker); "
