@@ -114,6 +114,39 @@ TEST(CApiBody, AFollowerOnACurvedPathPosesAsTheCppFollower) {
   fg_set_free(set);
 }
 
+TEST(CApiBody, WithoutASkeletonTheBodyStandsOnTheWalkersLegs) {
+  fg_error error;
+  fg_set* set = fg_set_builtin("default", &error);
+  fg_walker_def def = fg_walker_def_default();
+  fg_segments_from_stature(1.60, &def);
+  fg_walker* walker = fg_walker_new(set, &def, nullptr, &error);
+  fg_path* route = fg_path_straight(&error);
+  const fg_follower_def options = fg_follower_def_default();  // stature 0: the legs'
+  fg_follower* follower = fg_follower_new(walker, route, nullptr, &options, &error);
+  ASSERT_NE(follower, nullptr) << error.message;
+  for (int frame = 0; frame < 30; ++frame) {
+    fg_walker_advance(walker, 1.0 / 60.0);
+    const fg_body_pose* body = fg_follower_update(follower, walker);
+    fg_pose pose;
+    fg_walker_pose(walker, &pose);
+    EXPECT_NEAR(body->position[FG_HIPS].y, pose.pelvis_y - fg_follower_pelvis_drop(follower), 1e-9);
+    EXPECT_LT(fg_follower_pelvis_drop(follower), 0.002);
+    EXPECT_NEAR(body->position[FG_HIPS].z, pose.pelvis_x, 0.01);  // along +Z, but for the sway
+  }
+  // Winter's 1.60 m body: the top of the head at 1.60 m above the hips' 0.530 x 1.60 m.
+  const Humanoid expected = humanoid_from_stature(1.60);
+  const fg_body_pose* body = fg_follower_update(follower, walker);
+  const double head = body->position[FG_HEAD_END].y - body->position[FG_HIPS].y;
+  EXPECT_NEAR(head,
+              expected[Joint::spine].y + expected[Joint::chest].y + expected[Joint::neck].y +
+                  expected[Joint::head].y + expected[Joint::head_end].y,
+              0.01);
+  fg_follower_free(follower);
+  fg_path_free(route);
+  fg_walker_free(walker);
+  fg_set_free(set);
+}
+
 TEST(CApiBody, JointNamesAndParentsAreTheBodys) {
   for (int j = 0; j < FG_JOINT_COUNT; ++j) {
     EXPECT_EQ(fg_joint_name(j), name(static_cast<Joint>(j)));
