@@ -7,7 +7,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "body/skeleton_fixtures.hpp"
@@ -153,7 +155,38 @@ TEST(CApiBody, JointNamesAndParentsAreTheBodys) {
     const auto p = parent(static_cast<Joint>(j));
     EXPECT_EQ(fg_joint_parent(j), p ? index(*p) : -1);
   }
-  EXPECT_STREQ(fg_joint_name(FG_LEFT_UPPER_ARM), "leftUpperArm");
+  // Each of the header's names stands for the joint it names.
+  const std::pair<int, const char*> named[] = {
+      {FG_HIPS, "hips"},
+      {FG_SPINE, "spine"},
+      {FG_CHEST, "chest"},
+      {FG_NECK, "neck"},
+      {FG_HEAD, "head"},
+      {FG_HEAD_END, "headEnd"},
+      {FG_LEFT_UPPER_LEG, "leftUpperLeg"},
+      {FG_LEFT_LOWER_LEG, "leftLowerLeg"},
+      {FG_LEFT_FOOT, "leftFoot"},
+      {FG_LEFT_TOES, "leftToes"},
+      {FG_LEFT_TOES_END, "leftToesEnd"},
+      {FG_RIGHT_UPPER_LEG, "rightUpperLeg"},
+      {FG_RIGHT_LOWER_LEG, "rightLowerLeg"},
+      {FG_RIGHT_FOOT, "rightFoot"},
+      {FG_RIGHT_TOES, "rightToes"},
+      {FG_RIGHT_TOES_END, "rightToesEnd"},
+      {FG_LEFT_SHOULDER, "leftShoulder"},
+      {FG_LEFT_UPPER_ARM, "leftUpperArm"},
+      {FG_LEFT_LOWER_ARM, "leftLowerArm"},
+      {FG_LEFT_HAND, "leftHand"},
+      {FG_LEFT_HAND_END, "leftHandEnd"},
+      {FG_RIGHT_SHOULDER, "rightShoulder"},
+      {FG_RIGHT_UPPER_ARM, "rightUpperArm"},
+      {FG_RIGHT_LOWER_ARM, "rightLowerArm"},
+      {FG_RIGHT_HAND, "rightHand"},
+      {FG_RIGHT_HAND_END, "rightHandEnd"},
+  };
+  ASSERT_EQ(std::size(named), static_cast<std::size_t>(FG_JOINT_COUNT));
+  for (const auto& [joint, joint_name] : named)
+    EXPECT_STREQ(fg_joint_name(joint), joint_name);
   EXPECT_EQ(fg_joint_name(FG_JOINT_COUNT), nullptr);
   EXPECT_EQ(fg_joint_name(-1), nullptr);
   EXPECT_EQ(fg_joint_parent(FG_JOINT_COUNT), -1);
