@@ -309,16 +309,8 @@ void add_walk_command(CLI::App& app) {
         humanoid = poser->humanoid();
         options.segments = humanoid->segments();
       } else {
-        body::Humanoid built = body::humanoid_from_stature(o->stature);
-        const rig::Segments& s = options.segments;  // a trained set's, or given one by one
-        for (const rig::Side side : rig::kSides) {
-          built[body::lower_leg(side)] = {0.0, -s.thigh, 0.0};
-          built[body::foot(side)] = {0.0, -s.shank, 0.0};
-          built[body::toes(side)] = {0.0, -s.ankle_height, s.ball};
-          built[body::toes_end(side)] = {0.0, 0.0, s.toe};
-        }
-        built[body::Joint::hips].y = s.leg_length();
-        built.heel = s.heel;  // no joint: the skeleton's own humanoid guesses it
+        // The walk's legs (a trained set's, or given one by one), the stature's trunk and arms.
+        body::Humanoid built = body::humanoid_with_legs(options.segments, o->stature);
         skeleton = body::skeleton_of(built);
         poser.emplace(*skeleton, body::map_humanoid(*skeleton));
         humanoid = std::move(built);

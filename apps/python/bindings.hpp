@@ -24,6 +24,13 @@ namespace py = pybind11;
 using SetPtr = std::shared_ptr<gait::ControllerSet>;
 using GroundPtr = std::shared_ptr<terrain::Terrain>;
 
+// A Python Walker: the C++ walker with the set and ground it keeps alive.
+struct Walker {
+  SetPtr set;
+  GroundPtr ground;
+  gait::Walker walker;
+};
+
 // A set given as a ControllerSet, a built-in name (str) or a folder (os.PathLike).
 SetPtr to_set(const py::object& set);
 // A ground given as a Terrain, a terrain spec such as "slope:10" (str), or None (level ground).
@@ -45,5 +52,6 @@ py::array_t<double> copy_array(const std::vector<double>& data, std::vector<py::
 
 void bind_walk(py::module_& m);     // ControllerSet, Terrain, Walker, Crowd (walk.cpp)
 void bind_offline(py::module_& m);  // Motion, evaluate, clips, train (offline.cpp)
+void bind_body(py::module_& m);     // Path, Humanoid, PathFollower, Skeleton, ... (body.cpp)
 
 }  // namespace fuzzygait::python

@@ -67,7 +67,8 @@ PYBIND11_MODULE(fuzzygait, m) {
   namespace fp = fuzzygait::python;
   m.doc() =
       "fuzzygait: procedural human walking driven by fuzzy controllers (docs/python.md). "
-      "Controller sets, walkers and crowds; recording, evaluating against normative curves, "
+      "Controller sets, walkers and crowds; the whole body on a path and a game's skeleton; "
+      "recording, evaluating against normative curves, "
       "motion capture clips and training.";
   fp::parse_error_type =
       PyErr_NewExceptionWithDoc("fuzzygait.ParseError",
@@ -79,4 +80,5 @@ PYBIND11_MODULE(fuzzygait, m) {
   fp::py::register_exception_translator(fp::translate);
   fp::bind_walk(m);
   fp::bind_offline(m);
+  fp::bind_body(m);
 }

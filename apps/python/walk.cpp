@@ -30,12 +30,6 @@ static_assert(sizeof(rig::LegAngles) == 4 * sizeof(double));
 static_assert(sizeof(rig::Point) == 2 * sizeof(double));
 static_assert(sizeof(gait::Phase) == 1);
 
-struct Walker {
-  SetPtr set;
-  GroundPtr ground;
-  gait::Walker walker;
-};
-
 struct Crowd {
   SetPtr set;
   GroundPtr ground;

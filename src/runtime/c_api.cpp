@@ -1,73 +1,20 @@
 // The C face (include/fuzzygait/fuzzygait.h) over the C++ runtime: each handle owns its C++
 // object; every exception stops here and becomes an fg_error.
-#include "fuzzygait/fuzzygait.h"
+#include "runtime/c_api.hpp"
 
-#include <algorithm>
-#include <cstring>
-#include <exception>
-#include <limits>
 #include <memory>
-#include <new>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
-#include "fuzzygait/gait/controllers.hpp"
-#include "fuzzygait/gait/crowd.hpp"
-#include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/rig/rig.hpp"
-#include "fuzzygait/terrain/terrain.hpp"
 
 using namespace fuzzygait;
 
-struct fg_set {
-  gait::ControllerSet set;
-};
-struct fg_ground {
-  terrain::Terrain ground;
-};
-struct fg_walker {
-  // Level ground of its own when none is given.
-  std::unique_ptr<terrain::Terrain> own_ground;
-  gait::Walker walker;
-};
-struct fg_crowd {
-  std::unique_ptr<terrain::Terrain> own_ground;
-  gait::Crowd crowd;
-};
-
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-void clear(fg_error* error) {
-  if (!error) return;
-  error->failed = 0;
-  error->message[0] = '\0';
-}
-
-void fail(fg_error* error, const char* message) {
-  if (!error) return;
-  error->failed = 1;
-  const std::size_t n = std::min(std::strlen(message), sizeof error->message - 1);
-  std::memcpy(error->message, message, n);
-  error->message[n] = '\0';
-}
-
-// Runs `make`, turning any exception into `error` and a null result.
-template <class Make>
-auto guarded(fg_error* error, Make make) noexcept -> decltype(make()) {
-  clear(error);
-  try {
-    return make();
-  } catch (const std::bad_alloc&) {
-    fail(error, "out of memory");
-  } catch (const std::exception& e) {
-    fail(error, e.what());
-  } catch (...) {
-    fail(error, "unknown error");
-  }
-  return nullptr;
-}
+using c_api::guarded;
+constexpr double kNaN = c_api::kNaN;
 
 gait::WalkerOptions options_of(const fg_walker_def& def) {
   gait::WalkerOptions o;
@@ -104,13 +51,7 @@ extern "C" {
 
 int fg_segments_from_stature(double stature, fg_walker_def* def) {
   if (!def || !(stature >= 0.5 && stature <= 3.0)) return 0;
-  const rig::Segments s = rig::segments_from_stature(stature);
-  def->thigh = s.thigh;
-  def->shank = s.shank;
-  def->ankle_height = s.ankle_height;
-  def->heel = s.heel;
-  def->ball = s.ball;
-  def->toe = s.toe;
+  c_api::set_segments(*def, rig::segments_from_stature(stature));
   return 1;
 }
 

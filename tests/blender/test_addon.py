@@ -11,8 +11,9 @@
 # rigs (Mixamo- and Rigify-named armatures built here, rotated, scaled and with rolled bones:
 # found by name and posed where the walker is), errors (each refusal, with its message, writing
 # nothing), panel (the sidebar panel draws existing properties and passes them all to the
-# operator; Find bones) and register (the add-on unregisters and registers again). Exits 1 when a
-# check fails.
+# operator; Find bones), register (the add-on unregisters and registers again) and body (the whole
+# body of a Mixamo rig with arms: each bone where a Python follower puts its joint, along a curve
+# the arms swinging and the feet planted). Exits 1 when a check fails.
 import argparse
 import math
 import os
@@ -425,8 +426,138 @@ def case_register():
     check(obj.animation_data.action is not None, "no keys after registering again")
 
 
+# A Mixamo rig with arms, metres, Z up, facing -Y (the body's left at +X): (name, parent, the
+# body's (left, up, forward) position), each bone's tail at its first child's head.
+MIXAMO_BODY = [("Hips", None, (0, 1.00, 0.02)), ("Spine", "Hips", (0, 1.10, 0.0)),
+               ("Spine1", "Spine", (0, 1.22, 0.0)), ("Spine2", "Spine1", (0, 1.35, 0.01)),
+               ("Neck", "Spine2", (0, 1.52, 0.01)), ("Head", "Neck", (0, 1.62, 0.02)),
+               ("HeadTop_End", "Head", (0, 1.80, 0.02))]
+for _side, _x in (("Left", 1), ("Right", -1)):
+    MIXAMO_BODY += [(_side + "UpLeg", "Hips", (0.09 * _x, 0.92, 0)),
+                    (_side + "Leg", _side + "UpLeg", (0.09 * _x, 0.50, 0.01)),
+                    (_side + "Foot", _side + "Leg", (0.09 * _x, 0.08, 0)),
+                    (_side + "ToeBase", _side + "Foot", (0.09 * _x, 0, 0.13)),
+                    (_side + "Toe_End", _side + "ToeBase", (0.09 * _x, 0, 0.20)),
+                    (_side + "Shoulder", "Spine2", (0.03 * _x, 1.46, 0)),
+                    (_side + "Arm", _side + "Shoulder", (0.17 * _x, 1.45, 0)),
+                    (_side + "ForeArm", _side + "Arm", (0.45 * _x, 1.45, 0)),
+                    (_side + "Hand", _side + "ForeArm", (0.70 * _x, 1.45, 0))]
+
+
+RIGIFY_LEGS = {"Hips": "spine", "LeftUpLeg": "thigh.L", "LeftLeg": "shin.L",
+               "LeftFoot": "foot.L", "LeftToeBase": "toe.L", "RightUpLeg": "thigh.R",
+               "RightLeg": "shin.R", "RightFoot": "foot.R", "RightToeBase": "toe.R"}
+
+
+def mixamo_body_armature(name, names=None):
+    """The rig as an armature; names: {joint: bone name}, "mixamorig:" + joint for the rest."""
+    def bone_name(joint):
+        return (names or {}).get(joint, "mixamorig:" + joint)
+    at = {n: Vector((p[0], -p[2], p[1])) for n, _, p in MIXAMO_BODY}
+    bones = []
+    for n, parent, _ in MIXAMO_BODY:
+        child = next((c for c, p, _ in MIXAMO_BODY if p == n), None)
+        tail = at[child] if child else at[n] + (at[n] - at[parent]).normalized() * 0.05
+        bones.append((bone_name(n), parent and bone_name(parent), at[n], tail, 0.3, False))
+    obj = build_armature(name, bones, Matrix())
+    for bone in obj.pose.bones:
+        bone.rotation_mode = "XYZ" if "Arm" in bone.name else "QUATERNION"
+    return obj
+
+
+def body_against_follower(obj, label):
+    """Walks the armature's whole body straight on and checks each bone the add-on's poser maps
+    against a follower in Python: the bone's head where the follower puts its joint."""
+    from fuzzygait_blender import body
+    scene = bpy.context.scene
+    activate(obj)
+    bpy.ops.fuzzygait.walk_armature(speed=1.2, whole_body=True)
+    check(obj.animation_data.action is not None, "%s: no keys" % label)
+    bones = obj.data.bones
+    mapping = rig.resolve_map(bones, {})
+    skeleton, _ = body.skeleton_of(fg, obj, mapping["pelvis"], 1.0)
+    poser = body.poser_of(fg, skeleton, mapping)
+    walker = fg.Walker(speed=1.2, segments=poser.humanoid.segments)
+    route = body.route_of(fg, None, None, float(walker.pelvis[0]))  # on from under the hips
+    follower = fg.PathFollower(poser.humanoid, route, walker)
+    start = (bones[mapping["thigh_l"]].head_local + bones[mapping["thigh_r"]].head_local) / 2
+    start.z = 0.0  # on the ground
+    worst = 0.0
+    for frame in range(FIRST, LAST + 1):
+        if frame > FIRST:
+            walker.advance(1 / FPS)
+        positions, _ = follower.update()
+        scene.frame_set(frame)
+        for joint, name in poser.map.items():
+            if joint == "hips":  # the body's hips: between the hip joints, not a bone's head
+                continue
+            x, y, z = positions[fg.JOINTS.index(joint)]
+            worst = max(worst, (world_head(obj, name) - (start + Vector((x, -z, y)))).length)
+    print("%s: %d mapped bones within %.4f mm of the follower's joints"
+          % (label, len(poser.map), worst * 1e3))
+    check(worst < 1e-4, "%s: a bone %.4f mm off the follower's joint" % (label, worst * 1e3))
+    return poser.map
+
+
+def case_body():
+    """The whole body: on a straight path each mapped bone's head where a follower puts its joint
+    (Mixamo's names; Rigify's legs through the add-on's bone map); along a quarter circle the hips
+    on it, the arms swinging against each other, planted balls staying put."""
+    new_scene()
+    check("leftHand" in body_against_follower(mixamo_body_armature("body"), "body"),
+          "body: the hands were not mapped")
+    new_scene()
+    legs = body_against_follower(mixamo_body_armature("rigify", RIGIFY_LEGS), "rigify legs")
+    check(legs.get("leftUpperLeg") == "thigh.L", "rigify legs: mapped as %s" % legs)
+
+    scene = new_scene()
+    obj = mixamo_body_armature("body")
+    radius = 4.0
+    curve = scenes.quarter_circle(radius)
+    activate(obj)
+    bpy.ops.fuzzygait.walk_armature(speed=1.3, path="CURVE", curve=curve.name, whole_body=True)
+    centre = Vector((radius, 0, 0))
+    worst_off, worst_slide, last_angle, planted_frames = 0.0, 0.0, 0.0, 0
+    hands = {"Left": [], "Right": []}
+    before = {}
+    for frame in range(FIRST, LAST + 1):
+        scene.frame_set(frame)
+        hip = (world_head(obj, "mixamorig:LeftUpLeg") + world_head(obj, "mixamorig:RightUpLeg")) / 2
+        radial = (hip - centre).xy
+        worst_off = max(worst_off, abs(radial.length - radius))
+        tangent = Vector((radial.y, -radial.x, 0)).normalized()
+        last_angle = math.degrees(math.atan2(-radial.y, -radial.x))
+        for side in hands:
+            hands[side].append((world_head(obj, "mixamorig:%sHand" % side) - hip).dot(tangent))
+            ball = world_head(obj, "mixamorig:%sToeBase" % side)
+            if ball.z < 0.002 and side in before:
+                worst_slide = max(worst_slide, (ball - before[side]).xy.length)
+                planted_frames += 1
+            before[side] = ball if ball.z < 0.002 else None
+            if before[side] is None:
+                del before[side]
+    left, right = hands["Left"][30:], hands["Right"][30:]
+    mean_l, mean_r = sum(left) / len(left), sum(right) / len(right)
+    covariance = sum((a - mean_l) * (b - mean_r) for a, b in zip(left, right))
+    spread = math.sqrt(sum((a - mean_l) ** 2 for a in left) * sum((b - mean_r) ** 2 for b in right))
+    print("body on the curve: hips within %.1f mm of it, %.1f deg round; the hands swing %.0f mm, "
+          "r %.2f between them; a planted ball slides at most %.2f mm a frame (%d frames)"
+          % (worst_off * 1e3, last_angle, (max(left) - min(left)) * 1e3, covariance / spread,
+             worst_slide * 1e3, planted_frames))
+    check(worst_off < 0.05, "body: the hips left the curve by %.1f mm" % (worst_off * 1e3))
+    check(last_angle > 45, "body: the walk went only %.1f deg round" % last_angle)
+    swing = max(left) - min(left)
+    check(swing > 0.15, "body: the left hand swings %.3f m" % swing)
+    check(covariance / spread < -0.8, "body: the hands swing together (r %.2f)"
+          % (covariance / spread))
+    check(planted_frames > 40 and worst_slide < 0.003,
+          "body: a planted ball slid %.2f mm a frame (%d frames planted)"
+          % (worst_slide * 1e3, planted_frames))
+
+
 CASES = {"straight": case_straight, "curve": case_curve, "rigs": case_rigs,
-         "errors": case_errors, "panel": case_panel, "register": case_register}
+         "errors": case_errors, "panel": case_panel, "register": case_register,
+         "body": case_body}
 for name in args.cases or list(CASES):
     begin = time.monotonic()
     try:

@@ -82,6 +82,29 @@ TEST(Humanoid, FromStatureMatchesTheRigAndWinter) {
   EXPECT_THROW(humanoid_from_stature(std::nan("")), std::invalid_argument);
 }
 
+TEST(Humanoid, WithLegsTakesTheWalkersLegsUnderTheStaturesTrunk) {
+  // A stature's own legs give that stature's humanoid, bit for bit.
+  const Humanoid same = humanoid_with_legs(rig::segments_from_stature(1.8), 1.8);
+  const Humanoid expected = humanoid_from_stature(1.8);
+  for (std::size_t j = 0; j < kJointCount; ++j) {
+    EXPECT_EQ(same.offset[j].x, expected.offset[j].x) << j;
+    EXPECT_EQ(same.offset[j].y, expected.offset[j].y) << j;
+    EXPECT_EQ(same.offset[j].z, expected.offset[j].z) << j;
+  }
+  // Long thighs (a trained set's body): the legs are the walker's, the arms a 1.75 m body's.
+  rig::Segments legs = rig::segments_from_stature(1.75);
+  legs.thigh += 0.08;
+  const Humanoid tall = humanoid_with_legs(legs, 1.75);
+  EXPECT_EQ(tall.segments().thigh, legs.thigh);
+  EXPECT_EQ(tall[Joint::hips].y, legs.leg_length());
+  EXPECT_EQ(tall[Joint::left_upper_arm].y, humanoid_from_stature(1.75)[Joint::left_upper_arm].y);
+  // Without a stature, the one the legs stand for: hips at 0.530 of it.
+  const Humanoid own = humanoid_with_legs(legs);
+  EXPECT_NEAR(own[Joint::head_end].y, 0.130 * legs.leg_length() / kHipHeightPerStature, 1e-12);
+  legs.shank = -1.0;
+  EXPECT_THROW(humanoid_with_legs(legs, 1.75), std::invalid_argument);
+}
+
 TEST(Humanoid, ForwardKinematicsAgreesWithTheSagittalRig) {
   const Humanoid h = humanoid_from_stature(1.8);
   const rig::LegAngles angles{0.4, 0.7, -0.1, 0.3};

@@ -1,8 +1,8 @@
 # Installs the runtime component of the fuzzygait build alone into a scratch prefix, then
 # configures, builds and runs the game-side example against it with
-# find_package(fuzzygait COMPONENTS runtime), as a game would, and the C example (walk_in_c); and
-# checks that neither the
-# installed runtime nor the example links any library but the C++ standard library's. Then the
+# find_package(fuzzygait COMPONENTS runtime), as a game would, and the C examples (walk_in_c,
+# walk_a_path_in_c); and checks that neither the installed runtime nor the example links any
+# library but the C++ standard library's. Then the
 # whole package: find_package(fuzzygait COMPONENTS offline) builds a program that records a walk.
 # cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... -P check_example.cmake
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -73,6 +73,20 @@ if(NOT run_output MATCHES "speed 1\\.80 m/s" OR NOT run_output MATCHES "refused:
   message(FATAL_ERROR "the C example did not walk as it should:\n${run_output}")
 endif()
 message(STATUS "the installed runtime builds and runs the C example:\n${run_output}")
+
+# The C path example, from the runtime component alone: a skeleton given as arrays, mapped by its
+# names, walked round an S and posed; a bad path refused with its reason.
+run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/walk_a_path_in_c" -B "${WORK_DIR}/example_path_c"
+    -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}")
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/example_path_c")
+run("${WORK_DIR}/example_path_c/walk_a_path_in_c")
+if(NOT run_output MATCHES "leftUpperArm <- mixamorig:LeftArm"
+   OR NOT run_output MATCHES "right foot planted"
+   OR NOT run_output MATCHES "path end \\(3\\.00, 6\\.00\\): reached"
+   OR NOT run_output MATCHES "refused: path point 3 is the same")
+  message(FATAL_ERROR "the C path example did not walk its path as it should:\n${run_output}")
+endif()
+message(STATUS "the installed runtime builds and runs the C path example:\n${run_output}")
 
 # The offline component: a program that records a walk and measures it.
 run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/all")

@@ -8,6 +8,7 @@ import pytest
 SOURCE_DIR = pathlib.Path(os.environ["FUZZYGAIT_SOURCE_DIR"])
 CLI = os.environ["FUZZYGAIT_CLI"]
 WALK_BITS = os.environ["FUZZYGAIT_WALK_BITS"]
+BODY_BITS = os.environ["FUZZYGAIT_BODY_BITS"]
 CLIP = SOURCE_DIR / "data" / "mocap" / "cmu" / "07_01.bvh"
 
 

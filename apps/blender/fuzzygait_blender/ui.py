@@ -55,6 +55,11 @@ def walk_properties():
             name="Pelvic tilt", default=True,
             description="Tilt the pelvis as the walker does, the spine bone kept upright "
                         "(needs a spine bone)"),
+        "whole_body": BoolProperty(
+            name="Whole body", default=False,
+            description="Pose every bone fuzzygait maps (CMU, Mixamo, VRM, ... names): arms, "
+                        "pelvis and trunk from the set's upper body, feet locked while planted, "
+                        "on the armature's own legs"),
     }
 
 
@@ -127,7 +132,7 @@ class FUZZYGAIT_OT_walk_armature(bpy.types.Operator):
             speed=self.speed, step_length=self.step_length, stature=self.stature,
             frame_start=start, frame_end=end, fps=scene.render.fps / scene.render.fps_base,
             path=self.path, curve=curve, pelvis_tilt=self.pelvis_tilt,
-            bones={key: getattr(self, key) for key in BONE_ROLES})
+            whole_body=self.whole_body, bones={key: getattr(self, key) for key in BONE_ROLES})
         try:
             result = walk.walk_armature(obj, settings, context.evaluated_depsgraph_get(),
                                         scene.unit_settings.scale_length, module_dirs(context))
@@ -193,6 +198,7 @@ class FUZZYGAIT_PT_walk(bpy.types.Panel):
         if settings.path == "CURVE":
             layout.prop_search(settings, "curve", bpy.data, "objects")
         layout.prop(settings, "pelvis_tilt")
+        layout.prop(settings, "whole_body")
 
         box = layout.box()
         row = box.row()

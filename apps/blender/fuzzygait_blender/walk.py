@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import bpy
 from mathutils import Matrix
 
+from . import body as bodies
 from . import path as paths
 from . import rig
 
@@ -63,6 +64,7 @@ class Settings:
     path: str = "STRAIGHT"          # STRAIGHT or CURVE
     curve: object = None            # the curve object for CURVE
     pelvis_tilt: bool = True
+    whole_body: bool = False        # the follower poses arms, trunk and legs (body.py)
     bones: dict = field(default_factory=dict)  # role -> bone name, "" automatic
 
 
@@ -100,16 +102,20 @@ def controller_set(fg, settings):
     return fg.ControllerSet.builtin(settings.controllers)
 
 
-def make_walker(fg, settings, measure, unit_scale):
-    """(walker, stature m, armature units per walker metre)."""
+def _pace(settings):
+    """The walker's pace option: {"speed": m/s} or {"step_length": m}."""
     if settings.pace == "SPEED":
         _check_number("speed", settings.speed)
-        pace = {"speed": float(settings.speed)}
-    elif settings.pace == "STEP":
+        return {"speed": float(settings.speed)}
+    if settings.pace == "STEP":
         _check_number("step length", settings.step_length)
-        pace = {"step_length": float(settings.step_length)}
-    else:
-        raise WalkError("pace must be SPEED or STEP, not %r" % settings.pace)
+        return {"step_length": float(settings.step_length)}
+    raise WalkError("pace must be SPEED or STEP, not %r" % settings.pace)
+
+
+def make_walker(fg, settings, measure, unit_scale):
+    """(walker, stature m, armature units per walker metre)."""
+    pace = _pace(settings)
     _check_number("stature", settings.stature, positive=False)
     if settings.stature < 0:
         raise WalkError("stature must be 0 (measured) or above, not %g" % settings.stature)
@@ -339,6 +345,7 @@ def walk_armature(obj, settings, depsgraph, unit_scale=1.0, module_dirs=()):
     object_scale = scale_vector[0]
 
     solver = Solver(obj, mapping, measure, settings.pelvis_tilt)
+    points = None
     if settings.path == "STRAIGHT":
         route = paths.StraightPath(solver.start, measure.forward)
     elif settings.path == "CURVE":
@@ -356,6 +363,10 @@ def walk_armature(obj, settings, depsgraph, unit_scale=1.0, module_dirs=()):
         raise WalkError("path must be STRAIGHT or CURVE, not %r" % settings.path)
 
     fg = import_module(module_dirs)
+    if settings.whole_body:
+        return _walk_whole_body(fg, obj, settings, mapping, measure,
+                                solver.start if points is None else points[0], points,
+                                unit_scale * object_scale)
     walker, stature, scale = make_walker(fg, settings, measure, unit_scale * object_scale)
     keys = Keys()
     dt = 1.0 / settings.fps
@@ -382,3 +393,22 @@ def walk_armature(obj, settings, depsgraph, unit_scale=1.0, module_dirs=()):
                   segments=dict(walker.segments), frames=settings.frame_end -
                   settings.frame_start + 1, travel=float(walker.pelvis[0]) - x0,
                   past_curve_end=past_end)
+
+
+def _walk_whole_body(fg, obj, settings, mapping, measure, origin, points, metres_per_unit):
+    """walk_armature with the whole body (body.py): the armature's own legs, not a stature."""
+    keys = Keys()
+    try:
+        walker, segments, x0 = bodies.walk_body(
+            fg, obj, controller_set(fg, settings), _pace(settings), mapping, measure, origin,
+            points, metres_per_unit, settings.fps, settings.frame_start, settings.frame_end, keys,
+            _rotation_values)
+    except bodies.BodyError as error:
+        raise WalkError("armature '%s': %s" % (obj.name, error)) from None
+    keys.write(obj, settings.frame_start, settings.frame_end, obj.name + " walk")
+    leg = segments["thigh"] + segments["shank"] + segments["ankle_height"]
+    travel = float(walker.pelvis[0]) - x0
+    curve_length = paths.PolylinePath(points, measure.up).length if points else float("inf")
+    return Result(bones=mapping, stature=leg / HIP_HEIGHT, scale=1.0 / metres_per_unit,
+                  segments=dict(segments), frames=settings.frame_end - settings.frame_start + 1,
+                  travel=travel, past_curve_end=travel / metres_per_unit > curve_length)

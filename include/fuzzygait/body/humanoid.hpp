@@ -91,6 +91,14 @@ struct Humanoid {
 // apart, chin 0.870 H, upper arm 0.186 H, forearm 0.146 H, hand 0.108 H. Throws
 // std::invalid_argument for a stature that rig::segments_from_stature refuses.
 Humanoid humanoid_from_stature(double stature);
+// The hip joint's height over stature in Winter's proportions (rig::segments_from_stature).
+inline constexpr double kHipHeightPerStature = 0.530;
+// A humanoid walking on these legs (a walker's segments): humanoid_from_stature(stature) with its
+// legs replaced by `legs` and its hips their leg length high; stature by default the one the legs
+// stand for, leg_length() / kHipHeightPerStature. Throws std::invalid_argument as
+// humanoid_from_stature and validate do.
+Humanoid humanoid_with_legs(const rig::Segments& legs,
+                            std::optional<double> stature = std::nullopt);
 // Throws std::invalid_argument naming the joint when an offset is not finite, a bone has no
 // length, the legs differ between the sides, or the leg offsets are not rig segments
 // (rig::validate).

@@ -140,6 +140,20 @@ Humanoid humanoid_from_stature(double stature) {
   return h;
 }
 
+Humanoid humanoid_with_legs(const rig::Segments& legs, std::optional<double> stature) {
+  Humanoid h = humanoid_from_stature(stature.value_or(legs.leg_length() / kHipHeightPerStature));
+  for (const rig::Side side : rig::kSides) {
+    h[lower_leg(side)] = {0.0, -legs.thigh, 0.0};
+    h[foot(side)] = {0.0, -legs.shank, 0.0};
+    h[toes(side)] = {0.0, -legs.ankle_height, legs.ball};
+    h[toes_end(side)] = {0.0, 0.0, legs.toe};
+  }
+  h[Joint::hips].y = legs.leg_length();
+  h.heel = legs.heel;
+  validate(h);
+  return h;
+}
+
 void validate(const Humanoid& h) {
   for (std::size_t i = 0; i < kJointCount; ++i) {
     const Vec3& v = h.offset[i];
