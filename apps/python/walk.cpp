@@ -46,6 +46,9 @@ T option(const py::handle value, const std::string& who, const std::string& key,
   if constexpr (std::is_same_v<T, py::dict>) {
     if (!py::isinstance<py::dict>(value)) throw refuse();  // (a cast would call dict() on it)
   }
+  if constexpr (std::is_same_v<T, bool>) {
+    if (!py::isinstance<py::bool_>(value)) throw refuse();  // (a cast would take any truth)
+  }
   try {
     return value.cast<T>();
   } catch (const py::cast_error&) {
@@ -85,6 +88,7 @@ gait::WalkerOptions walker_options(const gait::ControllerSet& set, const py::dic
   std::optional<double> step, speed, stature, time_step, warm_up;
   std::optional<std::uint64_t> seed;
   std::optional<std::size_t> event_capacity;
+  bool standing = false;
   py::dict segments;
   for (const auto& [key, value] : given) {
     const std::string k = py::str(key);
@@ -105,10 +109,12 @@ gait::WalkerOptions walker_options(const gait::ControllerSet& set, const py::dic
       seed = option<std::uint64_t>(value, who, k, "a whole number from 0 to 2**64 - 1");
     } else if (k == "event_capacity") {
       event_capacity = option<std::size_t>(value, who, k, "a whole number from 0 to 4096");
+    } else if (k == "standing") {
+      standing = option<bool>(value, who, k, "True or False");
     } else {
       throw std::invalid_argument(who + "unknown option '" + k +
                                   "' (step_length, speed, stature, segments, time_step, seed, "
-                                  "warm_up, event_capacity)");
+                                  "warm_up, event_capacity, standing)");
     }
   }
   if (step && speed) {
@@ -136,6 +142,7 @@ gait::WalkerOptions walker_options(const gait::ControllerSet& set, const py::dic
     o.start.random = true;
     o.start.seed = *seed;
   }
+  o.start.standing = standing;
   return o;
 }
 
@@ -336,7 +343,8 @@ void bind_walker(py::module_& m) {
           }),
           py::arg("set") = "default", py::arg("ground") = py::none(),
           "Options: step_length (m) or speed (m/s), stature (m) or segments (dict), time_step "
-          "(s), seed (a random start pose), warm_up (s), event_capacity (events kept, default 64).")
+          "(s), seed (a random start pose), warm_up (s), event_capacity (events kept, default 64), "
+          "standing (True: stands, feet side by side, until go()).")
       .def(
           "advance", [](Walker& w, double dt) { return w.walker.advance(dt); }, py::arg("dt"))
       .def(
@@ -345,6 +353,18 @@ void bind_walker(py::module_& m) {
       .def(
           "set_step_length", [](Walker& w, double v) { return w.walker.set_step_length(v); },
           py::arg("metres"))
+      .def(
+          "stop", [](Walker& w) { w.walker.stop(); },
+          "Stops on the spot: the next foot to lift closes beside the planted one, then the "
+          "walker stands.")
+      .def(
+          "go", [](Walker& w) { w.walker.go(); },
+          "Walks on from standing (or calls a stop off): a short first step, the body "
+          "accelerating from rest.")
+      .def_property_readonly("standing", [](const Walker& w) { return w.walker.standing(); })
+      .def_property_readonly(
+          "locomotion", [](const Walker& w) { return gait::name(w.walker.locomotion()); },
+          "'walking', 'stopping' or 'standing'.")
       .def_property_readonly("set", [](const Walker& w) { return w.set; })
       .def_property_readonly("ground", [](const Walker& w) { return w.ground; })
       .def_property_readonly("time", [](const Walker& w) { return w.walker.time(); })
@@ -464,6 +484,13 @@ void bind_crowd(py::module_& m) {
           "set_step_length",
           [](Crowd& c, std::size_t i, double v) { return c.crowd.set_step_length(i, v); },
           py::arg("i"), py::arg("metres"))
+      .def(
+          "stop", [](Crowd& c, std::size_t i) { return c.crowd.stop(i); }, py::arg("i"))
+      .def(
+          "standing", [](const Crowd& c, std::size_t i) { return c.crowd[check(c, i)].standing(); },
+          py::arg("i"))
+      .def(
+          "go", [](Crowd& c, std::size_t i) { return c.crowd.go(i); }, py::arg("i"))
       .def_property_readonly("batched_controllers",
                              [](const Crowd& c) { return c.crowd.batched_controllers(); })
       .def(

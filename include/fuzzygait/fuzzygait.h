@@ -37,6 +37,7 @@ typedef struct fg_walker_def {
   double time_step; /* s, 0.00001 to 0.05 */
   int random_start; /* nonzero: random joint angles (seeded) instead of mid-stride */
   uint64_t start_seed;
+  int standing_start; /* nonzero: standing, feet side by side, until fg_walker_go() */
 } fg_walker_def;
 
 typedef struct fg_leg_angles {
@@ -91,6 +92,12 @@ void fg_walker_pose(const fg_walker* walker, fg_pose* pose);
 /* side: FG_LEFT or FG_RIGHT (any other value reads the right leg). */
 void fg_walker_points(const fg_walker* walker, int side, fg_leg_points* points);
 int fg_walker_in_contact(const fg_walker* walker, int side);
+/* As Walker::stop() and go(): stop on the spot (the next foot to lift closes beside the planted
+ * one, then the walker stands), and walk on from standing. fg_walker_standing(): 1 while both
+ * feet stand still side by side (or settle there). */
+void fg_walker_stop(fg_walker* walker);
+void fg_walker_go(fg_walker* walker);
+int fg_walker_standing(const fg_walker* walker);
 
 /* A game's task system, as Box2D v3 takes one (C++: gait::TaskSystem, whose contract holds):
  * enqueue() runs task over [0, item_count) in ranges of at least min_range items, on workers
@@ -128,6 +135,9 @@ int fg_crowd_advance(fg_crowd* crowd, double dt);
 /* Character i's pose and speed commands; i past the end: nothing written, NaN returned. */
 void fg_crowd_pose(const fg_crowd* crowd, size_t i, fg_pose* pose);
 double fg_crowd_set_speed(fg_crowd* crowd, size_t i, double metres_per_second);
+/* fg_walker_stop() and fg_walker_go() of character i: 0 (nothing changed) when i is not one. */
+int fg_crowd_stop(fg_crowd* crowd, size_t i);
+int fg_crowd_go(fg_crowd* crowd, size_t i);
 double fg_crowd_set_step_length(fg_crowd* crowd, size_t i, double metres);
 
 /* ---- The whole body on a path, on a game's skeleton (docs/body.md) ----

@@ -24,6 +24,7 @@ gait::WalkerOptions options_of(const fg_walker_def& def) {
   o.time_step = def.time_step;
   o.start.random = def.random_start != 0;
   o.start.seed = def.start_seed;
+  o.start.standing = def.standing_start != 0;
   o.event_capacity = 0;  // the C face reads no events: no room kept for them
   return o;
 }
@@ -63,6 +64,7 @@ fg_walker_def fg_walker_def_default(void) {
   def.speed = o.speed;
   def.time_step = o.time_step;
   def.random_start = 0;
+  def.standing_start = 0;
   def.start_seed = 0;
   return def;
 }
@@ -162,6 +164,18 @@ int fg_walker_in_contact(const fg_walker* walker, int side) {
   return walker && walker->walker.in_contact(side_of(side)) ? 1 : 0;
 }
 
+void fg_walker_stop(fg_walker* walker) {
+  if (walker) walker->walker.stop();
+}
+
+void fg_walker_go(fg_walker* walker) {
+  if (walker) walker->walker.go();
+}
+
+int fg_walker_standing(const fg_walker* walker) {
+  return walker && walker->walker.standing() ? 1 : 0;
+}
+
 fg_crowd_def fg_crowd_def_default(void) {
   fg_crowd_def def{};
   def.threads = 1;
@@ -224,6 +238,14 @@ void fg_crowd_pose(const fg_crowd* crowd, size_t i, fg_pose* pose) {
 
 double fg_crowd_set_speed(fg_crowd* crowd, size_t i, double metres_per_second) {
   return crowd ? crowd->crowd.set_speed(i, metres_per_second) : kNaN;
+}
+
+int fg_crowd_stop(fg_crowd* crowd, size_t i) {
+  return crowd && crowd->crowd.stop(i) ? 1 : 0;
+}
+
+int fg_crowd_go(fg_crowd* crowd, size_t i) {
+  return crowd && crowd->crowd.go(i) ? 1 : 0;
 }
 
 double fg_crowd_set_step_length(fg_crowd* crowd, size_t i, double metres) {

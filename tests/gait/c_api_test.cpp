@@ -181,6 +181,47 @@ TEST(CApi, ACrowdOnThreadsOrTheGamesTasksWalksAsOnOne) {
   fg_set_free(set);
 }
 
+TEST(CApi, AWalkerStopsAndGoesAsTheCppWalker) {
+  fg_error error{};
+  fg_set* set = fg_set_builtin("default", &error);
+  fg_ground* ground = fg_ground_flat(&error);
+  ASSERT_TRUE(set && ground) << error.message;
+  fg_walker_def def = fg_walker_def_default();
+  def.standing_start = 1;
+  fg_walker* c = fg_walker_new(set, &def, ground, &error);
+  ASSERT_TRUE(c) << error.message;
+  gait::WalkerOptions o;
+  o.start.standing = true;
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::Walker cpp(test::default_set(), o, flat);
+  EXPECT_EQ(fg_walker_standing(c), 1);
+  for (int frame = 0; frame < 60 * 8; ++frame) {
+    if (frame == 30) {
+      fg_walker_go(c);
+      cpp.go();
+    }
+    if (frame == 240) {
+      fg_walker_stop(c);
+      cpp.stop();
+    }
+    fg_walker_advance(c, 1.0 / 60.0);
+    cpp.advance(1.0 / 60.0);
+    fg_pose pose;
+    fg_walker_pose(c, &pose);
+    ASSERT_EQ(pose.pelvis_x, cpp.pose().pelvis.x) << "frame " << frame;
+    ASSERT_EQ(fg_walker_standing(c), cpp.standing() ? 1 : 0) << "frame " << frame;
+  }
+  EXPECT_EQ(fg_walker_standing(c), 1);
+  fg_walker_stop(nullptr);
+  fg_walker_go(nullptr);
+  EXPECT_EQ(fg_walker_standing(nullptr), 0);
+  EXPECT_EQ(fg_crowd_stop(nullptr, 0), 0);
+  EXPECT_EQ(fg_crowd_go(nullptr, 0), 0);
+  fg_walker_free(c);
+  fg_ground_free(ground);
+  fg_set_free(set);
+}
+
 TEST(CApi, FailuresComeBackAsMessages) {
   fg_error error;
   EXPECT_EQ(fg_set_builtin("sprightly", &error), nullptr);

@@ -190,3 +190,36 @@ def test_a_set_whose_file_is_broken_raises_a_parse_error_naming_file_and_line(tm
     assert "swing_knee.fll" in str(caught.value)
     assert caught.value.line == 4 and "swing_knee.fll" in caught.value.source
     assert isinstance(caught.value, ValueError)
+
+
+def test_a_walker_stops_on_the_spot_and_starts_again_from_standing():
+    walker = fg.Walker("default", step_length=0.7)
+    walker.advance(3.0)
+    assert walker.locomotion == "walking"
+    walker.stop()
+    assert walker.locomotion == "stopping"
+    walker.advance(3.0)
+    assert walker.standing and walker.locomotion == "standing"
+    heels = walker.points[:, 3, 0]  # [side, heel, x]
+    assert abs(heels[0] - heels[1]) < 1e-3
+    walker.go()
+    assert walker.locomotion == "walking"
+    x = walker.pelvis[0]
+    walker.advance(3.0)
+    assert walker.pelvis[0] - x > 2.5
+
+
+def test_a_walker_made_standing_stands_until_go_and_crowds_stop_theirs():
+    walker = fg.Walker("default", standing=True)
+    assert walker.standing
+    before = walker.pelvis.copy()
+    walker.advance(1.0)
+    assert np.array_equal(walker.pelvis, before)
+    with pytest.raises(TypeError, match="standing must be True or False"):
+        fg.Walker("default", standing="yes")
+    crowd = fg.Crowd("default", [{"standing": True}, {}])
+    assert crowd.standing(0) and not crowd.standing(1)
+    assert crowd.go(0) and crowd.stop(1)
+    assert not crowd.go(2)
+    crowd.advance(3.0)
+    assert not crowd.standing(0) and crowd.standing(1)
