@@ -292,4 +292,34 @@ TEST(StartStop, SameCallsGiveTheSameBitsAndCrowdsStopAsLoneWalkers) {
   EXPECT_FALSE(crowd.go(3));
 }
 
+// People starting from standing reach 90 % of their steady speed with the third step, and
+// accelerate mostly between the first and the third ("Analysis of sloped gait: how many steps are
+// needed to reach steady-state walking speed after gait initiation?", fourteen adults).
+TEST(StartStop, TheThirdStepIsAtTheWalksSpeedAsPeoplesIs) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  for (const double step : {0.50, 0.70, 0.85}) {
+    SCOPED_TRACE("step " + std::to_string(step) + " m");
+    gait::Walker w = walker_on(ground, step, 1.75, true);
+    w.go();
+    double t = w.time();
+    double x = w.state().pelvis.x;
+    std::vector<double> share;  // of the commanded speed, step by step
+    for (int i = 0; i < 240 * 6 && share.size() < 5; ++i) {
+      w.clear_events();
+      w.advance(kFrame);
+      for (const gait::EventRecord& e : w.events()) {
+        if (e.event != gait::Event::HeelStrike) continue;
+        share.push_back((w.state().pelvis.x - x) / (w.time() - t) / w.speed());
+        t = w.time();
+        x = w.state().pelvis.x;
+      }
+    }
+    ASSERT_EQ(share.size(), 5u);
+    EXPECT_LT(share[0], 0.8);
+    EXPECT_LT(share[0], share[1]);
+    for (std::size_t k = 2; k < share.size(); ++k)
+      EXPECT_NEAR(share[k], 1.0, 0.1) << "step " << k + 1;
+  }
+}
+
 }  // namespace
