@@ -7,6 +7,7 @@ import { View3D } from './view3d.js';
 import { SideView } from './sideview.js';
 import { Curves, renderFigures } from './curves.js';
 import { ControllerPanel, sayWhenClamped } from './controllers.js';
+import { PathPanel } from './pathpanel.js';
 
 // What the page holds, and what the browser test reads: the latencies of edits from the input
 // event to the frame that shows their walk, the requests in flight, the errors shown.
@@ -38,6 +39,7 @@ let view3d;
 let side;
 let curves;
 let panel;
+let pathPanel;
 let settingsGui;
 let motion = null;
 let compareMotion = null;
@@ -213,6 +215,7 @@ function setWalk(walk, compare) {
   compareMotion = studio.compare && studio.compare.walk ? new Motion(studio.compare.walk) : null;
   view3d.setWalks(motion, compareMotion);
   side.setWalks(motion, compareMotion);
+  pathPanel.show(studio.state.settings, motion);
   curves.update(walk, compareMotion ? studio.compare.walk : null);
   renderFigures($('#figures'), walk, compareMotion ? studio.compare.walk : null);
   studio.redraws++;
@@ -375,17 +378,29 @@ function onSetParameter(name, value, phase) {
   editInGesture(`set/${name}`, { set: name }, value, phase, performance.now());
 }
 
+function applySettings(answer) {
+  studio.state.settings = answer.settings;
+  if (answer.reference) {
+    studio.state.reference = answer.reference;
+    curves.setReference(answer.reference);
+  }
+  if (answer.compare_dropped) showMessage(answer.compare_dropped, 'error');
+  setWalk(answer.walk, answer.compare);
+  refreshSettings();
+}
+
 function changeSettings(change) {
-  request('/api/settings', change, (answer) => {
-    studio.state.settings = answer.settings;
-    if (answer.reference) {
-      studio.state.reference = answer.reference;
-      curves.setReference(answer.reference);
-    }
-    if (answer.compare_dropped) showMessage(answer.compare_dropped, 'error');
-    setWalk(answer.walk, answer.compare);
-    refreshSettings();
-  }, performance.now(), 'settings');
+  request('/api/settings', change, applySettings, performance.now(), 'settings');
+}
+
+// A path drawn, cleared or its corners' radius changed (POST /api/settings, as the other
+// settings): a refusal (a corner too sharp, a radius under 0.5 m) is said under the path panel.
+function changePath(change, refused) {
+  request('/api/settings', change, applySettings, performance.now(), 'path', (error) => {
+    refused(error.message);
+    showError(error);
+    return true;
+  });
 }
 
 function open(id) {
@@ -444,8 +459,9 @@ function buildSettings() {
   if (!Object.values(terrains).includes(s.terrain)) terrains[s.terrain] = s.terrain;
   walk.add(settingsModel, 'terrain', terrains).name('terrain')
     .onChange((v) => changeSettings({ terrain: v }));
+  // Along a drawn path the walk goes to its end, whatever the cycles.
   walk.add(settingsModel, 'cycles', ...s.limits.cycles, 1).name('gait cycles')
-    .onFinishChange((v) => changeSettings({ cycles: v }));
+    .onFinishChange((v) => changeSettings({ cycles: v })).disable(Boolean(s.path));
   walk.add(settingsModel, 'reference', state.references).name('people (reference)')
     .onChange((v) => changeSettings({ reference: v }));
   walk.add(settingsModel, 'speed', 0.1, 2, 0.05).name('playback speed')
@@ -512,6 +528,8 @@ function refreshSettings() {
     const [slow, fast] = roundedInward(s.limits.speed, 0.01);
     speed.min(slow).max(fast);
   }
+  const cycles = settingsGui.folders[0].controllers.find((c) => c.property === 'cycles');
+  if (cycles) cycles.disable(Boolean(s.path));
   for (const folder of settingsGui.folders) for (const c of folder.controllers) c.updateDisplay();
 }
 
@@ -573,6 +591,7 @@ function timed(list, draw) {
   if (list.length > 120) list.shift();
 }
 
+let pathDrawn = 0;
 function frame() {
   const t = motion ? clock.tick(motion.duration) : 0;
   // Drawn in software, the views wait while a request is out: the rasteriser would take the
@@ -582,6 +601,10 @@ function frame() {
     timed(studio.frameMs.view3d, () => view3d.render(t));
     timed(studio.frameMs.side, () => side.render(t));
     curves.showCycle(motion.cyclePercent(t));
+    if (pathPanel.details.open && performance.now() - pathDrawn > 100) {
+      pathDrawn = performance.now();
+      pathPanel.draw(t);
+    }
     askFired(t);
   }
   requestAnimationFrame(frame);
@@ -671,6 +694,9 @@ function syncPlaying() {
 async function start() {
   view3d = new View3D($('#view3d'), $('#settings'));
   side = new SideView($('#side-canvas'));
+  pathPanel = new PathPanel($('#view3d'), changePath);
+  studio.pathPanel = pathPanel;
+  studio.view3d = view3d;
   curves = new Curves($('#curves'));
   panel = new ControllerPanel($('#controller-list'), {
     onKnot, onKnotTyped, onWord, onRules, onTerm, termShapes: () => studio.state.term_shapes || ['Triangle'],

@@ -1,7 +1,8 @@
 // A walk's frames as the server sends them (apps/studio/src/walk_view.cpp): per frame the time,
-// the pelvis (x, y metres, tilt degrees), both legs' six points (hip, knee, ankle, heel, ball, toe
-// tip; x, y metres; left then right), contacts and joint angles, and the whole body's joints (x
-// along the walk, y up, z to the left). The views sample it at any time.
+// the pelvis (x, y metres, tilt degrees; x is the distance along the path), both legs' six points
+// (hip, knee, ankle, heel, ball, toe tip; x, y metres; left then right), contacts and joint
+// angles, the whole body's joints (x along the start of the walk, y up, z to the left: the
+// library's z, y, x) and the path they walk. The views sample it at any time.
 
 export const POINTS = ['hip', 'knee', 'ankle', 'heel', 'ball', 'tip'];
 
@@ -19,6 +20,7 @@ export class Motion {
     // The stature the legs stand for (leg length is 0.530 of it: Winter 2009, as the rig's).
     this.stature = (s.thigh + s.shank + s.ankle_height) / 0.530;
     this.ground = walk.ground;
+    this.track = new Track(walk.path);
     // The body (body::PathFollower's poses, at walk.body.fps): its joints by name, x, y, z each a
     // frame, in metres from the millimetres' changes the server sends (a running sum).
     this.joints = new Map(walk.body.joints.map((name, i) => [name, i]));
@@ -103,6 +105,62 @@ export class Motion {
     return points;
   }
 }
+
+// The path the body walks in the body's axes (x the library's z, z its x): the server's samples of
+// path::Path every `spacing` metres from its start to its end, or straight ahead along x when no
+// path is drawn (path null). Before the start and past the end it goes straight on, as
+// path::Path does.
+export class Track {
+  constructor(path) {
+    this.path = path || null;
+    this.drawn = Boolean(path);
+    if (!path) return;
+    const n = path.samples.length / 2;
+    this.x = new Float64Array(n);
+    this.z = new Float64Array(n);
+    for (let k = 0; k < n; k++) {
+      this.x[k] = path.samples[2 * k + 1];
+      this.z[k] = path.samples[2 * k];
+    }
+    this.spacing = path.spacing;
+    this.length = path.length;
+  }
+
+  // The point `s` metres along and the unit direction there, into `out`.
+  at(s, out = { x: 0, z: 0, dx: 1, dz: 0 }) {
+    if (!this.drawn || this.x.length < 2) {
+      out.x = s;
+      out.z = 0;
+      out.dx = 1;
+      out.dz = 0;
+      return out;
+    }
+    const last = this.x.length - 1;
+    const i = Math.min(Math.max(Math.floor(s / this.spacing), 0), last - 1);
+    const from = i * this.spacing;
+    const to = Math.min((i + 1) * this.spacing, this.length);
+    const ex = this.x[i + 1] - this.x[i];
+    const ez = this.z[i + 1] - this.z[i];
+    const chord = Math.hypot(ex, ez) || 1;
+    out.dx = ex / chord;
+    out.dz = ez / chord;
+    const along = s <= 0 ? s : s >= this.length ? s - this.length : 0;
+    const base = s <= 0 ? 0 : s >= this.length ? last : -1;
+    if (base >= 0) {
+      out.x = this.x[base] + out.dx * along;
+      out.z = this.z[base] + out.dz * along;
+    } else {
+      const u = to > from ? (s - from) / (to - from) : 0;
+      out.x = this.x[i] + ex * u;
+      out.z = this.z[i] + ez * u;
+    }
+    return out;
+  }
+}
+
+// A ground point [x, z] as the API has it (the library's axes) in the body's axes, and back.
+export const bodyOf = ([x, z]) => ({ x: z, z: x });
+export const apiOf = ({ x, z }) => [z, x];
 
 export function makePose() {
   const leg = () => POINTS.map(() => ({ x: 0, y: 0 }));

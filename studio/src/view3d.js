@@ -1,13 +1,16 @@
 // The character walking in 3D (three.js): a low-poly body placed on the joints of the walk's
-// whole body (body::PathFollower's poses on a straight path: the legs, the pelvis turning, rolling
-// and swaying, the trunk and the arms swinging as the set's upper body controllers answer), the
-// ground as a tiled strip, a camera that follows the pelvis and orbits with the mouse. A second,
-// translucent character walks beside it when a set is compared.
+// whole body (body::PathFollower's poses on the path drawn, or a straight one: the legs, the
+// pelvis turning, rolling and swaying, the trunk and the arms swinging as the set's upper body
+// controllers answer), the ground as a tiled strip along the path, a camera that follows the
+// pelvis and orbits with the mouse. A second, translucent character walks beside it (on a drawn
+// path, on it) when a set is compared.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { heightAt, makePose } from './motion.js';
 
 const GROUND_WIDTH = 2.6; // metres across the walk
+const PATH_WIDTH = 1.6; // metres across a drawn path's strip
+const PATH_LINE = 0.025; // metres either side of the path's centre line
 const TILE = 0.5; // metres, the ground's checker
 const COMPARE_OFFSET = -0.9; // metres across: the compared character walks behind, to the far side
 
@@ -121,6 +124,8 @@ class Figure {
     this.build(H);
     this.pose = motion.sample(t, this.pose);
     this.body = motion.sampleBody(t, offsetZ, this.body || undefined);
+    this.ahead = motion.track.at(this.pose.pelvis.x + LOOK_AHEAD, this.ahead);
+    this.offsetZ = offsetZ;
     const at = (name) => this.body[motion.joints.get(name)];
     for (const [index, side] of [[0, 'left'], [1, 'right']]) {
       const leg = this.legs[index];
@@ -148,8 +153,17 @@ class Figure {
     const head = at('head');
     const top = at('headEnd');
     this.head.position.set((head.x + top.x) / 2, (head.y + top.y) / 2, (head.z + top.z) / 2);
-    // The head looks along the straight path, +x.
-    this.nose.position.set(this.head.position.x + 0.06 * H, this.head.position.y - 0.005 * H, this.head.position.z);
+    // The head looks at the path ahead, as body::PathFollower turns it (look_ahead).
+    const lx = this.ahead.x - this.head.position.x;
+    const lz = this.ahead.z + offsetZ - this.head.position.z;
+    const look = Math.hypot(lx, lz) || 1;
+    this.nose.position.set(this.head.position.x + (0.06 * H * lx) / look, this.head.position.y - 0.005 * H,
+      this.head.position.z + (0.06 * H * lz) / look);
+  }
+
+  // Where the hips are now (after place).
+  hips(motion) {
+    return this.body[motion.joints.get('hips')];
   }
 
   set visible(v) {
@@ -157,23 +171,57 @@ class Figure {
   }
 }
 
-function groundMesh(points) {
-  const positions = [];
-  const colors = [];
-  const light = new THREE.Color(0xcfd6c8);
-  const dark = new THREE.Color(0xa9b5a0);
-  const riser = new THREE.Color(0x8c9886);
-  const side = new THREE.Color(0x7c8777);
-  const half = GROUND_WIDTH / 2;
-  const quad = (a, b, c, d, color) => {
+// How far ahead along the path the head looks (m): body::FollowerOptions::look_ahead.
+const LOOK_AHEAD = 0.5;
+
+function disposeAll(object) {
+  object.traverse((o) => {
+    if (o.geometry) o.geometry.dispose();
+    if (o.material) o.material.dispose();
+  });
+}
+
+// The ground's colours: the tiles light and dark, risers, sides, a drawn path's centre line.
+const GROUND = {
+  light: new THREE.Color(0xcfd6c8),
+  dark: new THREE.Color(0xa9b5a0),
+  riser: new THREE.Color(0x8c9886),
+  side: new THREE.Color(0x7c8777),
+  line: new THREE.Color(0xd9822b),
+};
+
+// A mesh of coloured quads, added one at a time (corners [x, y, z] in order round each).
+class Quads {
+  constructor() {
+    this.positions = [];
+    this.colors = [];
+  }
+  add(a, b, c, d, color) {
     for (const v of [a, b, c, a, c, d]) {
-      positions.push(v[0], v[1], v[2]);
-      colors.push(color.r, color.g, color.b);
+      this.positions.push(v[0], v[1], v[2]);
+      this.colors.push(color.r, color.g, color.b);
     }
-  };
+  }
+  mesh() {
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.Float32BufferAttribute(this.positions, 3));
+    geometry.setAttribute('color', new THREE.Float32BufferAttribute(this.colors, 3));
+    geometry.computeVertexNormals();
+    return new THREE.Mesh(geometry, new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide }));
+  }
+}
+
+// Where the ground's sides end: 0.4 m below the lowest point of its profile ([[x, y], ...]).
+function groundBottom(points) {
   let bottom = Infinity;
   for (const [, y] of points) bottom = Math.min(bottom, y);
-  bottom -= 0.4;
+  return bottom - 0.4;
+}
+
+function groundMesh(points) {
+  const quads = new Quads();
+  const half = GROUND_WIDTH / 2;
+  const bottom = groundBottom(points);
   for (let i = 0; i + 1 < points.length; i++) {
     const [x0, y0] = points[i];
     const [x1, y1] = points[i + 1];
@@ -192,21 +240,92 @@ function groundMesh(points) {
       const column = Math.floor((xa + xb) / 2 / TILE);
       for (let z = -half; z < half - 1e-9; z += TILE) {
         const row = Math.floor(z / TILE);
-        const color = steep ? riser : (column + row) % 2 === 0 ? light : dark;
-        quad([xa, ya, z + TILE], [xb, yb, z + TILE], [xb, yb, z], [xa, ya, z], color);
+        const color = steep ? GROUND.riser : (column + row) % 2 === 0 ? GROUND.light : GROUND.dark;
+        quads.add([xa, ya, z + TILE], [xb, yb, z + TILE], [xb, yb, z], [xa, ya, z], color);
       }
       // The near side face, down to below the lowest ground: stairs read as solid.
-      quad([xa, bottom, half], [xb, bottom, half], [xb, yb, half], [xa, ya, half], side);
+      quads.add([xa, bottom, half], [xb, bottom, half], [xb, yb, half], [xa, ya, half], GROUND.side);
     }
   }
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute('position', new THREE.Float32BufferAttribute(positions, 3));
-  geometry.setAttribute('color', new THREE.Float32BufferAttribute(colors, 3));
-  geometry.computeVertexNormals();
-  return new THREE.Mesh(
-    geometry,
-    new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide }),
-  );
+  return quads.mesh();
+}
+
+// The ground under a drawn path: a strip PATH_WIDTH wide along it, at the terrain's height at each
+// distance along it (the walker's ground is the terrain along the path), tiled as the straight
+// strip; on it the path's centre line; around it a line every metre, level with the strip on
+// level ground, else below the lowest ground with the strip's sides down to it.
+// On a turn tighter than half the strip its inner edge keeps to 0.9 of the radius, so the strip
+// does not fold over itself.
+function pathGround(track, profile) {
+  const quads = new Quads();
+  const level = profile.every(([, y]) => Math.abs(y - profile[0][1]) < 1e-6);
+  const bottom = level ? profile[0][1] - 0.002 : groundBottom(profile);
+  // Cuts along the path: every 0.1 m (its samples) and at each point of the profile (risers).
+  const start = profile[0][0];
+  const end = profile[profile.length - 1][0];
+  const cuts = new Set();
+  for (let s = Math.ceil(start / 0.1) * 0.1; s < end; s += 0.1) cuts.add(Number(s.toFixed(4)));
+  for (const [x] of profile) cuts.add(x);
+  const sorted = [...cuts].sort((a, b) => a - b);
+  const before = { x: 0, z: 0, dx: 1, dz: 0 };
+  const after = { x: 0, z: 0, dx: 1, dz: 0 };
+  // The cross-section at distance s: points `across` metres to the left (negative: right), at the
+  // ground's height there lifted by `lift`.
+  const sections = sorted.map((s) => {
+    const here = track.at(s);
+    track.at(s - 0.1, before);
+    track.at(s + 0.1, after);
+    const turn = Math.atan2(before.dx * after.dz - before.dz * after.dx, before.dx * after.dx + before.dz * after.dz);
+    const radius = Math.abs(turn) > 1e-6 ? 0.2 / Math.abs(turn) : Infinity;
+    const inner = Math.min(PATH_WIDTH / 2, 0.9 * radius);
+    const y = heightAt(profile, s);
+    const nx = -here.dz;
+    const nz = here.dx;
+    const at = (across, lift = 0) => [here.x + nx * across, y + lift, here.z + nz * across];
+    const half = PATH_WIDTH / 2;
+    // The left edge is the inner one when the path turns left (turn > 0: towards +z).
+    const left = turn > 0 ? inner : half;
+    const right = turn < 0 ? inner : half;
+    return { s, y, at, left, right };
+  });
+  for (let i = 0; i + 1 < sections.length; i++) {
+    const a = sections[i];
+    const b = sections[i + 1];
+    const steep = b.s - a.s < 0.01 && Math.abs(b.y - a.y) > 1e-4;
+    const column = Math.floor((a.s + b.s) / 2 / (GROUND_WIDTH / 5.2));
+    // Across, from the right edge to the left: the right half, the centre line (two spans, lifted
+    // 2 mm) and the left half; [a's inner side, b's, a's outer, b's].
+    const spans = [[-a.right, -b.right, -PATH_LINE, -PATH_LINE], [-PATH_LINE, -PATH_LINE, 0, 0],
+      [0, 0, PATH_LINE, PATH_LINE], [PATH_LINE, PATH_LINE, a.left, b.left]];
+    spans.forEach(([a0, b0, a1, b1], row) => {
+      const onLine = row === 1 || row === 2;
+      const color = steep ? GROUND.riser : onLine ? GROUND.line : (column + row) % 2 === 0 ? GROUND.light : GROUND.dark;
+      quads.add(a.at(a1, onLine ? 0.002 : 0), b.at(b1, onLine ? 0.002 : 0), b.at(b0, onLine ? 0.002 : 0),
+        a.at(a0, onLine ? 0.002 : 0), color);
+    });
+    // The sides, down to below the lowest ground: stairs read as solid.
+    const down = ([x, , z]) => [x, bottom, z];
+    for (const [pa, pb] of level ? [] : [[a.at(a.left), b.at(b.left)], [b.at(-b.right), a.at(-a.right)]]) {
+      quads.add(down(pa), down(pb), pb, pa, GROUND.side);
+    }
+  }
+  const group = new THREE.Group();
+  group.add(quads.mesh());
+  // A grid a metre a square around the path, at the lowest ground.
+  let [x0, x1, z0, z1] = [Infinity, -Infinity, Infinity, -Infinity];
+  for (let k = 0; k < track.x.length; k++) {
+    x0 = Math.min(x0, track.x[k]);
+    x1 = Math.max(x1, track.x[k]);
+    z0 = Math.min(z0, track.z[k]);
+    z1 = Math.max(z1, track.z[k]);
+  }
+  // Lines only: a plane under them cost a browser drawing in software some 20 ms an edit (a pair
+  // of runs of 14 edits).
+  const size = Math.ceil(Math.max(x1 - x0, z1 - z0) + 12);
+  const grid = new THREE.GridHelper(size, size, 0xc3cbbd, 0xc3cbbd);
+  grid.position.set(Math.round((x0 + x1) / 2), bottom, Math.round((z0 + z1) / 2));
+  group.add(grid);
+  return group;
 }
 
 // Whether WebGL runs on the processor (SwiftShader, llvmpipe) rather than a graphics card.
@@ -288,13 +407,13 @@ export class View3D {
   setWalks(motion, compare) {
     this.motion = motion;
     this.compare = compare;
-    const key = JSON.stringify(motion.ground);
+    const key = JSON.stringify([motion.ground, motion.track.path && motion.track.path.samples]);
     if (key !== this.groundKey) {
       if (this.ground) {
         this.scene.remove(this.ground);
-        this.ground.geometry.dispose();
+        disposeAll(this.ground);
       }
-      this.ground = groundMesh(motion.ground);
+      this.ground = motion.track.drawn ? pathGround(motion.track, motion.ground) : groundMesh(motion.ground);
       this.scene.add(this.ground);
       this.groundKey = key;
     }
@@ -305,17 +424,23 @@ export class View3D {
     const now = performance.now();
     if (this.software && now - this.lastDrawn < 50) return;
     this.lastDrawn = now;
+    // On a drawn path the compared character walks it too, not beside it.
+    const offset = this.motion.track.drawn ? 0 : COMPARE_OFFSET;
     this.figure.place(this.motion, t, 0);
     this.ghost.visible = !!this.compare;
-    if (this.compare) this.ghost.place(this.compare, t, COMPARE_OFFSET);
+    if (this.compare) this.ghost.place(this.compare, t, offset);
     this.shadows[1].visible = !!this.compare;
-    [[this.figure, 0], [this.ghost, COMPARE_OFFSET]].forEach(([figure, z], i) => {
-      const x = figure.pose.pelvis.x;
-      this.shadows[i].position.set(x, heightAt(this.motion.ground, x) + 0.004, z);
+    [[this.figure, this.motion], [this.ghost, this.compare]].forEach(([figure, motion], i) => {
+      if (!motion) return;
+      const hips = figure.hips(motion);
+      this.shadows[i].position.set(hips.x, heightAt(motion.ground, figure.pose.pelvis.x) + 0.004, hips.z);
+      // Long along the way it walks (the disc lies flat: its x stays x, its y is -z).
+      this.shadows[i].rotation.z = Math.atan2(hips.z - figure.ahead.z - figure.offsetZ, figure.ahead.x - hips.x);
     });
     // Follow the pelvis: the target moves with it and the camera keeps its offset to it.
     const p = this.figure.pose.pelvis;
-    const target = new THREE.Vector3(p.x, p.y * 0.85, this.compare ? COMPARE_OFFSET / 2 : 0);
+    const hips = this.figure.hips(this.motion);
+    const target = new THREE.Vector3(hips.x, p.y * 0.85, hips.z + (this.compare ? offset / 2 : 0));
     const delta = target.clone().sub(this.controls.target);
     this.camera.position.add(delta);
     this.controls.target.copy(target);

@@ -7,6 +7,8 @@
 // again: the page shows that it is away, then recovers by itself. It also checks which rules fire
 // at a frame against the library (fuzzygait fuzzy eval), edits a rule as text (refused, then
 // taken), types exact knot and word values, and goes back and forth through the history's list.
+// It draws a path on the path panel's map by clicking and checks the whole body walks it, the
+// camera follows, an edit walks it again, a radius under 0.5 m is refused and the server keeps it.
 // Screenshots go to OUT_DIR.
 //
 //   node browser_test.mjs FUZZYGAIT_PROGRAM OUT_DIR [--max-median-ms N]
@@ -100,7 +102,7 @@ page.on('console', (message) => {
   pageErrors.push(message.text());
 });
 
-const studio = (expression) => page.evaluate(expression);
+const studio = (expression, argument) => page.evaluate(expression, argument);
 const idle = async () => {
   await page.evaluate(() => window.studio.idle());
   // Two frames: the answer drawn, then painted.
@@ -143,6 +145,57 @@ async function load() {
   await idle();
 }
 
+// Drags the swing knee's `delta` knot 2 back and forth `edits` times, each edit alone, and prints
+// the latencies from the input event to the frame that shows its walk; resolves with the median.
+async function measureLatency(edits, what) {
+  await studio(() => {
+    window.studio.latencies.length = 0;
+  });
+  const h2 = knot('swing_knee', 'delta', 2);
+  await h2.scrollIntoViewIfNeeded();
+  const b2 = await h2.boundingBox();
+  for (let i = 0; i < edits; i++) {
+    const x = b2.x + b2.width / 2 + (i % 2 === 0 ? 0 : -3);
+    const target = b2.x + b2.width / 2 + (i % 2 === 0 ? -3 : 0);
+    await page.mouse.move(x, b2.y + b2.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(target, b2.y + b2.height / 2);
+    await page.mouse.up();
+    await idle();
+    await page.waitForTimeout(50);
+  }
+  const latencies = await studio(() => window.studio.latencies);
+  const sorted = (xs) => [...xs].sort((a, b) => a - b);
+  const median = (xs) => sorted(xs)[Math.floor(xs.length / 2)];
+  const totals = latencies.map((l) => l.total);
+  const servers = latencies.map((l) => l.server);
+  const requests = latencies.map((l) => l.request);
+  const applies = latencies.map((l) => l.apply);
+  const loadAverage = readFileSync('/proc/loadavg', 'utf8').split(' ')[0];
+  console.log(`${what}, ${totals.length} edits (load ${loadAverage}): ` +
+    `median ${median(totals).toFixed(1)} ms, fastest ${sorted(totals)[0].toFixed(1)}, ` +
+    `slowest ${sorted(totals).at(-1).toFixed(1)}; server ${median(servers).toFixed(1)} ms, ` +
+    `request and answer ${median(requests).toFixed(1)} ms, drawing ${median(applies).toFixed(1)} ms`);
+  check(totals.length >= edits, `every edit was measured (${totals.length})`);
+  return median(totals);
+}
+let pathMedian = NaN;
+
+// Opens the path panel, clicks Draw, clicks the points ([x, z] in the 3D view's axes) on its map,
+// each answered before the next, and clicks Done.
+async function drawPath(points) {
+  const panel = page.locator('details.path-panel');
+  if (!(await panel.evaluate((details) => details.open))) await panel.locator('summary').click();
+  await panel.locator('button.path-draw').click();
+  for (const [x, z] of points) {
+    const map = await panel.locator('canvas.path-map').boundingBox();
+    const { u, v } = await studio(([x, z]) => window.studio.pathPanel.pixelOf({ x, z }), [x, z]);
+    await page.mouse.click(map.x + u, map.y + v);
+    await idle();
+  }
+  await panel.locator('button.path-draw').click(); // Done
+}
+
 try {
   const loadStart = Date.now();
   await load();
@@ -182,7 +235,7 @@ try {
     await studio(() => window.studio.seek(1.5));
     await idle();
     await page.waitForTimeout(200); // drawn in software: a frame every 50 ms at most
-    const view = page.locator('#view3d canvas');
+    const view = page.locator('#view3d > canvas');
     const viewBefore = await view.screenshot();
     await page.locator('#view3d').screenshot({ path: join(outDir, 'upper_body_before.png') });
     const handBefore = await hand();
@@ -617,40 +670,120 @@ try {
   }
 
   // ---- edit-to-redraw latency over 10 cycles: isolated edits, each a small drag ----
-  await studio(() => {
-    window.studio.latencies.length = 0;
-  });
   const settings = await studio(() => window.studio.state.settings);
   check(settings.cycles === 10, 'the walk is 10 gait cycles');
-  const h2 = knot('swing_knee', 'delta', 2);
-  await h2.scrollIntoViewIfNeeded();
-  const b2 = await h2.boundingBox();
-  const edits = 20;
-  for (let i = 0; i < edits; i++) {
-    const x = b2.x + b2.width / 2 + (i % 2 === 0 ? 0 : -3);
-    const target = b2.x + b2.width / 2 + (i % 2 === 0 ? -3 : 0);
-    await page.mouse.move(x, b2.y + b2.height / 2);
-    await page.mouse.down();
-    await page.mouse.move(target, b2.y + b2.height / 2);
-    await page.mouse.up();
-    await idle();
-    await page.waitForTimeout(50);
-  }
-  const latencies = await studio(() => window.studio.latencies);
-  const sorted = (xs) => [...xs].sort((a, b) => a - b);
-  const median = (xs) => sorted(xs)[Math.floor(xs.length / 2)];
-  const totals = latencies.map((l) => l.total);
-  const servers = latencies.map((l) => l.server);
-  const requests = latencies.map((l) => l.request);
-  const applies = latencies.map((l) => l.apply);
-  const loadAverage = readFileSync('/proc/loadavg', 'utf8').split(' ')[0];
-  console.log(`edit-to-redraw latency, 10 gait cycles, ${totals.length} edits (load ${loadAverage}): ` +
-    `median ${median(totals).toFixed(1)} ms, fastest ${sorted(totals)[0].toFixed(1)}, ` +
-    `slowest ${sorted(totals).at(-1).toFixed(1)}; server ${median(servers).toFixed(1)} ms, ` +
-    `request and answer ${median(requests).toFixed(1)} ms, drawing ${median(applies).toFixed(1)} ms`);
-  check(totals.length >= edits, `every edit was measured (${totals.length})`);
-  if (Number.isFinite(maxMedian)) check(median(totals) < maxMedian, `median edit-to-redraw under ${maxMedian} ms`);
+  const straightMedian = await measureLatency(20, 'edit-to-redraw latency, 10 gait cycles');
+  if (Number.isFinite(maxMedian)) check(straightMedian < maxMedian, `median edit-to-redraw under ${maxMedian} ms`);
   else console.log('     (no bound on the latency asked for: a sanitizer build)');
+
+  // ---- a path drawn on the map: the whole body walks it, edits redraw it, the server keeps it ----
+  {
+    const panel = page.locator('details.path-panel');
+    // An S in the 3D view's axes (x ahead, z to the body's left): 8 m, 6 m across, 8 m on.
+    const drawn = [[0, 0], [8, 0], [8, 6], [16, 6]];
+    await drawPath(drawn);
+    const sent = await studio(() => window.studio.state.settings.path);
+    check(JSON.stringify(sent) === JSON.stringify(drawn.map(([x, z]) => [z, x])),
+      `the points clicked are the path the server walks (${JSON.stringify(sent)}, the library's x, z)`);
+    const walk = await studio(() => window.studio.walk);
+    const length = 22 - 4 + Math.PI; // three legs, two right angles rounded at 1 m
+    check(walk.path && Math.abs(walk.path.length - length) < 1e-6 && walk.completed,
+      `the walk follows the path to its end (${walk.path && walk.path.length.toFixed(3)} m, completed ${walk.completed})`);
+    // The hips from the body sent, against the rounded path sent.
+    const follows = (w) => {
+      const body = w.body;
+      const stride = body.joints.length * 3;
+      const hips = body.joints.indexOf('hips') * 3;
+      const samples = w.path.samples;
+      const at = [0, 0, 0];
+      let farthest = 0;
+      let end = null;
+      for (let k = hips; k < body.changes.length; k += stride) {
+        for (let c = 0; c < 3; c++) at[c] += body.changes[k + c];
+        // The body's x is the path's z, its z the path's x.
+        let nearest = Infinity;
+        for (let i = 0; i + 1 < samples.length / 2; i++) {
+          const [ax, az, bx, bz] = [samples[2 * i + 1], samples[2 * i], samples[2 * i + 3], samples[2 * i + 2]];
+          const px = at[0] / 1000;
+          const pz = at[2] / 1000;
+          const ex = bx - ax;
+          const ez = bz - az;
+          const u = Math.min(Math.max(((px - ax) * ex + (pz - az) * ez) / (ex * ex + ez * ez || 1), 0), 1);
+          nearest = Math.min(nearest, Math.hypot(px - ax - u * ex, pz - az - u * ez));
+        }
+        farthest = Math.max(farthest, nearest);
+        end = [at[0] / 1000, at[2] / 1000];
+      }
+      return { farthest, end };
+    };
+    const followed = follows(walk);
+    check(followed.farthest < 0.05 && followed.end[0] > 15.5 && Math.abs(followed.end[1] - 6) < 0.05,
+      `the body's hips keep within ${(followed.farthest * 1000).toFixed(0)} mm of the drawn path and end at its end (${followed.end.map((v) => v.toFixed(2))})`);
+    const summary = await panel.locator('summary').textContent();
+    check(summary.includes('4 points') && summary.includes('21.1 m'), `the panel says what was drawn ("${summary}")`);
+    // The camera follows the body round the path: at three moments, the view's target is the hips.
+    const duration = await studio(() => window.studio.walk.frames.time.at(-1));
+    let worstTarget = 0;
+    for (const [i, t] of [0.3, 0.55, 0.8].map((f, i) => [i, f * duration])) {
+      await studio((t) => window.studio.seek(t), t);
+      await idle();
+      await page.waitForTimeout(250);
+      const { target, hips } = await studio(() => ({
+        target: window.studio.view3d.controls.target,
+        hips: window.studio.view3d.figure.hips(window.studio.view3d.motion),
+      }));
+      worstTarget = Math.max(worstTarget, Math.hypot(target.x - hips.x, target.z - hips.z));
+      await page.locator('#view3d').screenshot({ path: join(outDir, `path_walk_${i + 1}.png`) });
+    }
+    check(worstTarget < 0.01, `the camera follows the hips along the path (within ${(worstTarget * 1000).toFixed(1)} mm)`);
+    // An edit walks the set again on the path.
+    const kneeBefore = await kneeCurve();
+    await dragKnot(1, 4, 5);
+    const edited = await studio(() => window.studio.walk);
+    check(JSON.stringify(await kneeCurve()) !== JSON.stringify(kneeBefore) && edited.path &&
+      JSON.stringify(edited.path.points) === JSON.stringify(sent) && follows(edited).farthest < 0.05,
+    'an edit redraws the walk, still on the drawn path');
+    await studio(() => window.studio.play());
+    pathMedian = await measureLatency(10, `edit-to-redraw latency on the drawn path (${length.toFixed(1)} m, ${duration.toFixed(1)} s)`);
+    // A longer walk than 10 cycles' (21 m, its body posed at every recorded frame): twice the bound.
+    if (Number.isFinite(maxMedian)) check(pathMedian < 2 * maxMedian, `median edit-to-redraw on the path under ${2 * maxMedian} ms`);
+    // A radius under the path's smallest: refused with the server's reason, the path kept.
+    const radius = panel.locator('input.path-radius');
+    const errorsBefore = await studio(() => window.studio.errors.length);
+    expectRefusal = true;
+    await radius.fill('0.3');
+    await radius.press('Enter');
+    await idle();
+    expectRefusal = false;
+    const said = await panel.locator('.path-error').textContent();
+    check(said.includes('corner_radius') && said.includes('0.5') && await radius.inputValue() === '1' &&
+      (await studio(() => window.studio.state.settings.corner_radius)) === 1,
+    `a corner radius of 0.3 m is refused with the server's reason, the radius kept ("${said}")`);
+    await page.evaluate((n) => window.studio.errors.splice(n), errorsBefore);
+    await radius.fill('2');
+    await radius.press('Enter');
+    await idle();
+    const wider = await studio(() => window.studio.walk.path);
+    check(wider.corner_radius === 2 && wider.length < length, `a radius of 2 m rounds the corners wider (${wider.length.toFixed(2)} m)`);
+    // The server keeps the path: a page loaded again shows it (as after the server was away).
+    await page.reload();
+    await page.waitForFunction(() => window.studio && window.studio.ready, null, { timeout: 30000 });
+    await idle();
+    const kept = await studio(() => ({ path: window.studio.state.settings.path, walk: window.studio.walk.path }));
+    check(JSON.stringify(kept.path) === JSON.stringify(sent) && kept.walk && kept.walk.corner_radius === 2,
+      'a page loaded again shows the path the server keeps');
+    await page.locator('details.path-panel summary').click();
+    await studio((t) => window.studio.seek(t), 0.62 * duration);
+    await idle();
+    await page.waitForTimeout(250);
+    await page.locator('#view3d').screenshot({ path: join(outDir, 'path_reloaded.png') });
+    await page.locator('details.path-panel button.path-straight').click();
+    await idle();
+    const straight = await studio(() => ({ path: window.studio.state.settings.path, walk: window.studio.walk.path }));
+    check(straight.path === null && straight.walk === null, 'Straight walks straight ahead again');
+    await page.locator('details.path-panel summary').click();
+    await studio(() => window.studio.play());
+  }
 
   // ---- stairs: the terrain control ----
   await settingSelect('terrain').selectOption({ label: '6 stairs up, 0.17 x 0.28 m' });
@@ -745,11 +878,26 @@ try {
   await page.waitForTimeout(300);
   await shot('studio.png');
   // A close look at the whole body (arms, trunk, pelvis) beside the compared one: the 3D view zoomed.
-  const view = await page.locator('#view3d canvas').boundingBox();
+  const view = await page.locator('#view3d > canvas').boundingBox();
   await page.mouse.move(view.x + view.width * 0.3, view.y + view.height / 2);
   for (let i = 0; i < 2; i++) await page.mouse.wheel(0, -300);
   await page.waitForTimeout(400);
   await page.locator('#view3d').screenshot({ path: join(outDir, 'body_closeup.png') });
+  // The whole body on a drawn path, the panel open (docs/studio_path.png).
+  await page.mouse.move(view.x + view.width * 0.3, view.y + view.height / 2);
+  for (let i = 0; i < 2; i++) await page.mouse.wheel(0, 300);
+  await page.selectOption('#compare', '');
+  await idle();
+  await drawPath([[0, 0], [6, 0], [6, 5], [12, 5]]);
+  await studio((t) => window.studio.seek(t), 4.4);
+  await idle();
+  // Seen from higher up: a drag down the view orbits the camera over the path.
+  await page.mouse.move(view.x + view.width * 0.45, view.y + view.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(view.x + view.width * 0.45, view.y + view.height / 2 + 45, { steps: 5 });
+  await page.mouse.up();
+  await page.waitForTimeout(400);
+  await page.locator('#view3d').screenshot({ path: join(outDir, 'studio_path.png') });
 
   check(pageErrors.length === 0, `no errors in the page${pageErrors.length ? ': ' + pageErrors.join('; ') : ''}`);
   const shown = await studio(() => window.studio.errors);

@@ -1487,5 +1487,234 @@ TEST(StudioApi, FiredRulesOfTheUpperBodyAreTheLeftSidesReading) {
   }
 }
 
+// ---- a path drawn on the ground
+// ------------------------------------------------------------------
+
+// An L: 6 m ahead (+z), a right angle to the left (+x), 6 m on; corners rounded at 1 m.
+const json kLPath =
+    json::array({json::array({0.0, 0.0}), json::array({0.0, 6.0}), json::array({6.0, 6.0})});
+
+// The rounded path every centimetre, to find how far a point lies from it.
+std::vector<path::GroundPoint> dense(const path::Path& route) {
+  std::vector<path::GroundPoint> points;
+  for (double s = 0.0; s <= route.length(); s += 0.01)
+    points.push_back(route.at(s).point);
+  return points;
+}
+
+// How far the ground point (x, z) lies from the path (m).
+double off_path(const std::vector<path::GroundPoint>& curve, double x, double z) {
+  double nearest = 1e9;
+  for (const path::GroundPoint& p : curve)
+    nearest = std::min(nearest, std::hypot(p.x - x, p.z - z));
+  return nearest;
+}
+
+// The largest horizontal move of a heel, ball or toe tip between two frames of the body sent (1/15
+// s apart), where the walk's frames (1/30 s apart) have that point within 2 mm of the ground at
+// both and the frame between: a planted foot's slip, as tests/body/follower_test.cpp measures it
+// at 60 Hz but over the four such frames of a body frame.
+// Also counts the moves measured.
+double planted_slip(const json& walk, const BodyTrack& body, int& measured) {
+  const auto legs = walk.at("frames").at("legs").get<std::vector<double>>();
+  const auto frames = walk.at("frames").at("count").get<std::size_t>();
+  const auto on_ground = [&](std::size_t frame, std::size_t side, std::size_t point) {
+    return legs.at(frame * 24 + side * 12 + point * 2 + 1) < 0.002;
+  };
+  double worst = 0.0;
+  for (std::size_t k = 0; k + 1 < body.frames() && 2 * k + 2 < frames; ++k) {
+    for (std::size_t side = 0; side < 2; ++side) {
+      const std::string name = side == 0 ? "left" : "right";
+      const std::string joints[] = {name + "Heel", name + "Toes", name + "ToesEnd"};
+      for (std::size_t p = 0; p < 3; ++p) {  // heel, ball, tip: the walk's points 3, 4, 5
+        if (!on_ground(2 * k, side, p + 3) || !on_ground(2 * k + 1, side, p + 3) ||
+            !on_ground(2 * k + 2, side, p + 3)) {
+          continue;
+        }
+        const auto a = body.at(k, joints[p]);
+        const auto b = body.at(k + 1, joints[p]);
+        worst = std::max(worst, std::hypot(b[0] - a[0], b[2] - a[2]));
+        ++measured;
+      }
+    }
+  }
+  return worst;
+}
+
+TEST(StudioApi, TheWholeBodyWalksAPathDrawnOnTheGround) {
+  Studio studio(quick("path"));
+  const json answer = studio.change_settings({{"path", kLPath}, {"corner_radius", 1.0}});
+  EXPECT_EQ(answer.at("settings").at("path"), kLPath);
+  EXPECT_EQ(answer.at("settings").at("corner_radius"), 1.0);
+  const json& walk = answer.at("walk");
+  EXPECT_TRUE(walk.at("completed").get<bool>()) << walk.at("warnings");
+  const std::vector<path::GroundPoint> corners = {{0, 0}, {0, 6}, {6, 6}};
+  const path::Path route = path::Path::polyline(corners, 1.0);
+  EXPECT_NEAR(walk.at("path").at("length").get<double>(), route.length(), 1e-12);
+  // The rounded path as sent: the library's every 0.1 m, to the millimetre.
+  const auto samples = walk.at("path").at("samples").get<std::vector<double>>();
+  ASSERT_EQ(samples.size(), 2 * static_cast<std::size_t>(std::ceil(route.length() / 0.1) + 1));
+  for (std::size_t i = 0; i < samples.size() / 2; ++i) {
+    const path::GroundPoint p =
+        route.at(std::min(0.1 * static_cast<double>(i), route.length())).point;
+    EXPECT_NEAR(samples[2 * i], p.x, 5e-4 + 1e-9);
+    EXPECT_NEAR(samples[2 * i + 1], p.z, 5e-4 + 1e-9);
+  }
+  // Walked to the path's end, and no further than a frame past it.
+  const auto pelvis = walk.at("frames").at("pelvis").get<std::vector<double>>();
+  EXPECT_GE(pelvis.at(pelvis.size() - 3), route.length() - 0.05);
+
+  // The hips on the path all the way (the body's x is the path's z, its z the path's x), round the
+  // corner to its end.
+  const BodyTrack body(walk);
+  const std::vector<path::GroundPoint> curve = dense(route);
+  double farthest = 0.0;
+  double sum = 0.0;
+  for (std::size_t f = 0; f < body.frames(); ++f) {
+    const auto hips = body.at(f, "hips");
+    const double off = off_path(curve, hips[2], hips[0]);
+    farthest = std::max(farthest, off);
+    sum += off;
+  }
+  EXPECT_LT(farthest, 0.05);
+  const auto end = body.at(body.frames() - 1, "hips");
+  EXPECT_GT(end[2], 5.0);  // past the corner, along +x
+  EXPECT_NEAR(end[0], 6.0, 0.05);
+  // Planted feet stay put: at most 1 mm a 60 Hz frame (tests/body/follower_test.cpp's bound),
+  // four of them to a body frame, and the millimetres sent (half of one each way, on x and z).
+  // Every joint where a game's follower on that path, updated every frame the walk is recorded
+  // at, puts it (to the millimetre sent).
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::Walker walker = default_walker(set, flat);
+  const body::Humanoid humanoid = body::humanoid_from_stature(1.75);
+  body::PathFollower follower(humanoid, route, walker);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < 8 * body.frames(); ++i) {
+    if (i > 0) walker.advance(1.0 / 120.0);
+    const body::BodyPose& pose = follower.update(walker);
+    if (i % 8 != 0) continue;
+    for (std::size_t j = 0; j < body.joints.size(); ++j) {
+      const body::Vec3& p =
+          j < body::kJointCount ? pose.position[j] : pose.heel[j - body::kJointCount];
+      const auto sent = body.at(i / 8, body.joints[j]);
+      worst = std::max(
+          {worst, std::abs(sent[0] - p.z), std::abs(sent[1] - p.y), std::abs(sent[2] - p.x)});
+    }
+  }
+  EXPECT_LE(worst, 5e-4 + 1e-9);
+  int measured = 0;
+  const double slip = planted_slip(walk, body, measured);
+  EXPECT_LT(slip, 4 * 1e-3 + std::sqrt(2.0) * 1e-3);
+  EXPECT_GT(measured, 100);  // a foot point stands for most of every step
+  RecordProperty("hips_farthest_from_path_mm", std::to_string(farthest * 1e3));
+  RecordProperty("hips_mean_from_path_mm",
+                 std::to_string(sum / static_cast<double>(body.frames()) * 1e3));
+  RecordProperty("planted_slip_per_body_frame_mm", std::to_string(slip * 1e3));
+  RecordProperty("planted_moves_measured", measured);
+  RecordProperty("frames", std::to_string(walk.at("frames").at("count").get<int>()));
+  RecordProperty("walk_ms", std::to_string(walk.at("timing_ms").at("walk").get<double>()));
+  RecordProperty("body_ms", std::to_string(walk.at("timing_ms").at("body").get<double>()));
+}
+
+TEST(StudioApi, ADrawnPathIsKeptThroughEditsUndoAndCompareUntilStraightAgain) {
+  Studio studio(quick("path_kept"));
+  const json straight = studio.walk().at("walk");
+  EXPECT_TRUE(straight.at("path").is_null());
+  EXPECT_TRUE(studio.state().at("settings").at("path").is_null());
+  studio.change_settings({{"path", kLPath}});
+  EXPECT_EQ(studio.state().at("settings").at("path"), kLPath);
+  EXPECT_EQ(studio.state().at("settings").at("limits").at("corner_radius"), json({0.5, 20.0}));
+  // An edit walks the set again on the path; its undo too (the path is a setting, not a step).
+  const json edited = studio.edit({{"controller", "upper_body_shoulder"},
+                                   {"variable", "angle"},
+                                   {"term", "ahead"},
+                                   {"value", 60}});
+  EXPECT_EQ(edited.at("walk").at("path").at("points"), kLPath);
+  EXPECT_GT(BodyTrack(edited.at("walk")).at(BodyTrack(edited.at("walk")).frames() - 1, "hips")[2],
+            5.0);
+  const json undone = studio.undo();
+  EXPECT_EQ(undone.at("settings").at("path"), kLPath);
+  EXPECT_EQ(undone.at("walk").at("path").at("points"), kLPath);
+  // A compared set walks the same path.
+  const json compared = studio.compare({{"with", "style:heavy"}});
+  EXPECT_EQ(compared.at("compare").at("walk").at("path").at("points"), kLPath);
+  // The radius alone rounds the same points anew.
+  const json wider = studio.change_settings({{"corner_radius", 2.5}});
+  EXPECT_EQ(wider.at("settings").at("path"), kLPath);
+  EXPECT_EQ(wider.at("walk").at("path").at("corner_radius"), 2.5);
+  EXPECT_LT(wider.at("walk").at("path").at("length").get<double>(),
+            undone.at("walk").at("path").at("length").get<double>());
+  // Straight again: the walk is the straight one, as before the path.
+  const json back = studio.change_settings({{"path", nullptr}, {"corner_radius", 1.0}});
+  EXPECT_TRUE(back.at("settings").at("path").is_null());
+  EXPECT_TRUE(back.at("walk").at("path").is_null());
+  EXPECT_EQ(timeless(back.at("walk")), timeless(straight));
+}
+
+TEST(StudioApi, ABadPathIsRefusedNamingItsFieldAndPointAndChangesNothing) {
+  Studio studio(quick("path_refusals"));
+  studio.change_settings({{"path", kLPath}});
+  const json state = studio.state();
+  const json walk = studio.walk();
+  struct Case {
+    const char* what;
+    json request;
+    int status;
+    const char* field;
+    const char* says;
+  };
+  json many = json::array();
+  for (int i = 0; i < 257; ++i)
+    many.push_back({0.0, 0.1 * i});
+  const std::vector<Case> cases = {
+      {"a NaN coordinate", {{"path", {{0, 0}, {NAN, 3}}}}, 422, "path", "path point 2"},
+      {"an infinite coordinate",
+       {{"path", {{0, 0}, {0, 3}, {INFINITY, 3}}}},
+       422,
+       "path",
+       "path point 3"},
+      {"a point as text", {{"path", {{0, 0}, {"1", 3}}}}, 400, "path", "path point 2"},
+      {"a point of three numbers", {{"path", {{0, 0}, {1, 2, 3}}}}, 400, "path", "path point 2"},
+      {"a path that is not a list", {{"path", 5}}, 400, "path", "list"},
+      {"one point", {{"path", {{0, 0}}}}, 422, "path", "2 to 256 points, got 1"},
+      {"257 points", {{"path", many}}, 422, "path", "got 257"},
+      {"a point repeated",
+       {{"path", {{0, 0}, {0, 3}, {0, 3}}}},
+       422,
+       "path",
+       "path point 3 is the same"},
+      {"a corner too sharp for the radius its legs leave",
+       {{"path", {{0, 0}, {0, 0.4}, {0.4, 0.4}}}},
+       422,
+       "path",
+       "path point 2: the corner is too sharp"},
+      {"a path turning back on itself",
+       {{"path", {{0, 0}, {0, 5}, {0.1, 0}}}},
+       422,
+       "path",
+       "path point 2: the path turns back"},
+      {"a path too long", {{"path", {{0, 0}, {0, 30}, {30, 30}}}}, 422, "path", "up to 50 m"},
+      {"a corner radius below the path's smallest",
+       {{"corner_radius", 0.3}},
+       422,
+       "corner_radius",
+       "between 0.5 and 20"},
+      {"a corner radius as text", {{"corner_radius", "1"}}, 400, "corner_radius", "number"},
+  };
+  for (const Case& c : cases) {
+    try {
+      studio.change_settings(c.request);
+      ADD_FAILURE() << c.what << " was taken";
+    } catch (const RequestError& e) {
+      EXPECT_EQ(e.status(), c.status) << c.what;
+      EXPECT_EQ(e.field(), c.field) << c.what;
+      EXPECT_THAT(e.what(), HasSubstr(c.says)) << c.what;
+    }
+  }
+  EXPECT_EQ(studio.state(), state);
+  EXPECT_EQ(studio.walk(), walk);
+}
+
 }  // namespace
 }  // namespace fuzzygait

@@ -246,6 +246,20 @@ TEST(StudioServer, AnswersTheApiWithTheStudiosJson) {
   const auto undo = client.Post("/api/undo", "{}", "application/json");
   ASSERT_TRUE(undo);
   EXPECT_EQ(json::parse(undo->body).at("history").at("redo"), 1);
+  // A path drawn: the walk follows it, and the state keeps it for a page that loads again.
+  const auto path =
+      client.Post("/api/settings", R"({"path": [[0, 0], [0, 4], [4, 4]], "corner_radius": 1.5})",
+                  "application/json");
+  ASSERT_TRUE(path);
+  EXPECT_EQ(path->status, 200) << path->body;
+  const json walked = json::parse(path->body).at("walk");
+  EXPECT_EQ(walked.at("path").at("points"), json::parse("[[0, 0], [0, 4], [4, 4]]"));
+  EXPECT_EQ(walked.at("path").at("corner_radius"), 1.5);
+  const auto again = client.Get("/api/state");
+  ASSERT_TRUE(again);
+  EXPECT_EQ(json::parse(again->body).at("settings").at("path"),
+            json::parse("[[0, 0], [0, 4], [4, 4]]"));
+  EXPECT_EQ(json::parse(client.Get("/api/walk")->body).at("walk"), walked);
 }
 
 TEST(StudioServer, RefusesWithAStatusAndJsonNamingTheField) {
@@ -281,6 +295,25 @@ TEST(StudioServer, RefusesWithAStatusAndJsonNamingTheField) {
        "body"},
       {"a step the legs cannot reach", json_post("/api/settings", port, R"({"step": 2.5})"), 422,
        "step"},
+      {"a path with NaN", json_post("/api/settings", port, R"({"path": [[0, 0], [NaN, 3]]})"), 400,
+       "body"},
+      {"a path whose corner is too sharp",
+       json_post("/api/settings", port, R"({"path": [[0, 0], [0, 0.4], [0.4, 0.4]]})"), 422,
+       "path"},
+      {"a path of 300 points",
+       json_post(
+           "/api/settings", port,
+           R"({"path": [)" +
+               [] {
+                 std::string points;
+                 for (int i = 0; i < 300; ++i)
+                   points += (i ? ", [0, " : "[0, ") + std::to_string(i) + "]";
+                 return points;
+               }() +
+               "]}"),
+       422, "path"},
+      {"a corner radius under the path's smallest",
+       json_post("/api/settings", port, R"({"corner_radius": 0.2})"), 422, "corner_radius"},
       {"a knot past its neighbour",
        json_post("/api/edit", port,
                  R"({"controller": "swing_knee", "variable": "delta", "knot": 1, "value": 9})"),

@@ -125,6 +125,40 @@ bool optional_flag(const nlohmann::json& request, std::string_view field) {
   return value->get<bool>();
 }
 
+std::vector<path::GroundPoint> points_field(const nlohmann::json& request, std::string_view field,
+                                            std::size_t fewest, std::size_t most) {
+  const nlohmann::json& value = required(request, field);
+  const std::string name(field);
+  if (!value.is_array()) {
+    throw RequestError(
+        400, name, "'" + name + "' must be a list of [x, z] points, found " + value.type_name());
+  }
+  if (value.size() < fewest || value.size() > most) {
+    throw RequestError(422, name,
+                       "'" + name + "' must have " + std::to_string(fewest) + " to " +
+                           std::to_string(most) + " points, got " + std::to_string(value.size()));
+  }
+  std::vector<path::GroundPoint> points;
+  points.reserve(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const nlohmann::json& p = value[i];
+    const std::string which = name + " point " + std::to_string(i + 1);
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
+      throw RequestError(400, name, which + " must be [x, z], two numbers, found " + p.dump());
+    }
+    const double x = p[0].get<double>();
+    const double z = p[1].get<double>();
+    if (!std::isfinite(x) || !std::isfinite(z) || std::abs(x) > Limits::kLargestValue ||
+        std::abs(z) > Limits::kLargestValue) {
+      throw RequestError(422, name,
+                         which + " must lie within " + number_text(Limits::kLargestValue) +
+                             " m of the origin, got " + p.dump());
+    }
+    points.push_back({x, z});
+  }
+  return points;
+}
+
 bool is_plain_name(std::string_view name) {
   return !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||

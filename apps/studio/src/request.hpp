@@ -6,7 +6,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "fuzzygait/path/path.hpp"
 #include "fuzzygait/studio/studio.hpp"
 
 namespace fuzzygait::studio::detail {
@@ -28,6 +30,12 @@ std::string string_field(const nlohmann::json& request, std::string_view field);
 std::optional<std::string> optional_string(const nlohmann::json& request, std::string_view field);
 // The field as true or false; false when it is missing (400 when it is not a boolean).
 bool optional_flag(const nlohmann::json& request, std::string_view field);
+
+// The field as a list of points, each [x, z] (metres): 400 when it is not a list or a point is not
+// two numbers; 422 naming the point (from 1) when a coordinate is beyond Limits::kLargestValue, and
+// naming the count when there are fewer than `fewest` or more than `most`.
+std::vector<path::GroundPoint> points_field(const nlohmann::json& request, std::string_view field,
+                                            std::size_t fewest, std::size_t most);
 
 // Whether `name` is a name the workspace reads or writes: 1 to 64 letters, digits, '-' or '_'.
 bool is_plain_name(std::string_view name);

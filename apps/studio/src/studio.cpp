@@ -17,6 +17,7 @@
 #include "fuzzygait/io/normative.hpp"
 #include "fuzzygait/io/terrain_spec.hpp"
 #include "fuzzygait/io/walk_csv.hpp"
+#include "fuzzygait/path/path.hpp"
 #include "request.hpp"
 #include "runtime/common/format.hpp"
 #include "set_folder.hpp"
@@ -231,11 +232,24 @@ struct Studio::Session {
             {"cycles", settings.cycles},
             {"terrain", settings.terrain},
             {"reference", settings.reference},
+            {"path", path_points_json()},
+            {"corner_radius", settings.corner_radius},
             {"limits",
              {{"step", {low, high}},
               {"speed", speeds ? json{speeds->first, speeds->second} : json(nullptr)},
               {"stature", {Limits::kMinStature, Limits::kMaxStature}},
-              {"cycles", {Limits::kMinCycles, Limits::kMaxCycles}}}}};
+              {"cycles", {Limits::kMinCycles, Limits::kMaxCycles}},
+              {"corner_radius", {path::Path::kSmallestRadius, Limits::kLargestCornerRadius}},
+              {"path_points", Limits::kMostPathPoints},
+              {"path_length", Limits::kLongestPath}}}};
+  }
+
+  json path_points_json() const {
+    if (settings.path.empty()) return nullptr;
+    json points = json::array();
+    for (const path::GroundPoint& p : settings.path)
+      points.push_back({p.x, p.z});
+    return points;
   }
 
   void forget_walks() {
@@ -257,7 +271,7 @@ struct Studio::Session {
   const json& current_walk() {
     if (!walk_view) {
       walked = detail::walk(current, settings, ground, reference);
-      walk_view = detail::walk_json(*walked, ground);
+      walk_view = detail::walk_json(*walked, ground, settings);
     }
     return *walk_view;
   }
@@ -266,7 +280,7 @@ struct Studio::Session {
     if (!compared) return nullptr;
     if (!compared->view) {
       compared->walked = detail::walk(compared->set, settings, ground, reference);
-      compared->view = detail::walk_json(*compared->walked, ground);
+      compared->view = detail::walk_json(*compared->walked, ground, settings);
     }
     return {{"id", compared->id}, {"label", compared->label}, {"walk", *compared->view}};
   }
@@ -374,7 +388,9 @@ Studio::Studio(StudioOptions options) : session_(std::make_unique<Session>()) {
   }
   for (const std::string& spec : o.terrains)
     io::terrain_from_spec(spec, "--terrain");
-  s.settings = {o.step, 0.0, o.stature, o.cycles, "flat", "schwartz2008_free"};
+  s.settings.step = o.step;
+  s.settings.stature = o.stature;
+  s.settings.cycles = o.cycles;
   s.reference = io::load_normative(s.settings.reference);
   if (!o.folders.empty()) {
     s.current = gait::ControllerSet::load(o.folders.front());
@@ -485,7 +501,8 @@ json Studio::fired(const json& request) {
 
 json Studio::change_settings(const json& request) {
   Session& s = *session_;
-  detail::check_fields(request, {"step", "speed", "stature", "terrain", "cycles", "reference"});
+  detail::check_fields(request, {"step", "speed", "stature", "terrain", "cycles", "reference",
+                                 "path", "corner_radius"});
   detail::WalkSettings next = s.settings;
   next.stature =
       detail::optional_number(request, "stature", Limits::kMinStature, Limits::kMaxStature)
@@ -546,6 +563,18 @@ json Studio::change_settings(const json& request) {
     }
     reference = io::load_normative(*name);
     next.reference = *name;
+  }
+  // A path drawn (null: straight ahead), its corners rounded to the radius.
+  next.corner_radius =
+      detail::optional_number(request, "corner_radius", path::Path::kSmallestRadius,
+                              Limits::kLargestCornerRadius)
+          .value_or(next.corner_radius);
+  if (const auto path = request.find("path"); path != request.end()) {
+    next.path = path->is_null() ? std::vector<path::GroundPoint>{}
+                                : detail::points_field(request, "path", 2, Limits::kMostPathPoints);
+  }
+  if (request.contains("path") || request.contains("corner_radius")) {
+    next.route = detail::drawn_path(next.path, next.corner_radius);
   }
   s.settings = next;
   if (ground) s.ground = std::move(*ground);

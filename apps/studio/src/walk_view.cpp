@@ -11,6 +11,8 @@
 #include "fuzzygait/gait/walker.hpp"
 #include "fuzzygait/path/path.hpp"
 #include "fuzzygait/rig/rig.hpp"
+#include "fuzzygait/studio/studio.hpp"
+#include "runtime/common/format.hpp"
 
 namespace fuzzygait::studio::detail {
 namespace {
@@ -111,26 +113,111 @@ json figure(const char* name, double value, const char* unit, const char* bound,
 }
 
 // The body at kBodyFps over a walk `frames` recorded frames long: the set walked again as it was
-// recorded (the walker is deterministic, so its states are the recording's), followed on a
-// straight path. On a straight path the follower's pose depends on the walker's state alone (a
-// planted foot's frame is the path's), so posing only the frames sent is enough.
+// recorded (the walker is deterministic, so its states are the recording's), followed on the
+// settings' path or a straight one. On a straight path the follower's pose depends on the
+// walker's state alone (a planted foot's frame is the path's), so posing only the frames sent is
+// enough; on a drawn one a foot is locked where it was first seen planted, so the follower is
+// updated at every recorded frame, as a game updates it every frame.
 std::vector<body::BodyPose> pose_body(const gait::ControllerSet& set, const WalkSettings& settings,
                                       const terrain::Terrain& ground, std::size_t frames) {
   const body::Humanoid humanoid = body::humanoid_from_stature(settings.stature);
   gait::Walker walker(set, walker_options(settings), ground);
   const path::Path straight;
-  body::PathFollower follower(humanoid, straight, walker);
+  const path::Path& route = settings.route ? *settings.route : straight;
+  body::PathFollower follower(humanoid, route, walker);
   const auto stride = static_cast<std::size_t>(std::lround(kRecordFps / kBodyFps));
+  const bool every_frame = settings.route.has_value();
   std::vector<body::BodyPose> poses;
   poses.reserve(frames / stride + 1);
   for (std::size_t i = 0; i < frames; ++i) {
     if (i > 0) walker.advance(1.0 / kRecordFps);
-    if (i % stride == 0) poses.push_back(follower.update(walker));
+    if (i % stride == 0) {
+      poses.push_back(follower.update(walker));
+    } else if (every_frame) {
+      follower.update(walker);
+    }
   }
   return poses;
 }
 
+// The walker along `route` from its start, recorded at kRecordFps until its pelvis reaches the
+// path's end; `failure` says why it stopped short (a stall: 5 cm in 3 s, as `fuzzygait walk
+// --path`; or kLongestPathWalk gone by).
+eval::Motion record_path(gait::Walker& walker, const path::Path& route, std::string& failure) {
+  eval::Motion motion;
+  motion.fps = kRecordFps;
+  motion.segments = walker.segments();
+  const auto three_seconds = static_cast<std::size_t>(3.0 * kRecordFps);
+  const auto longest = static_cast<std::size_t>(kLongestPathWalk * kRecordFps);
+  for (std::size_t i = 0;; ++i) {
+    if (i > 0) walker.advance(1.0 / kRecordFps);
+    motion.frames.push_back(eval::capture_frame(walker, static_cast<double>(i) / kRecordFps));
+    const double x = motion.frames.back().pose.pelvis.x;
+    if (x >= route.length()) break;
+    const auto where = [&] {
+      return common::number_text(x, 2) + " m along the path's " +
+             common::number_text(route.length(), 2) + " m";
+    };
+    if (i >= three_seconds && x - motion.frames[i - three_seconds].pose.pelvis.x < 0.05) {
+      failure = "the walker stalled " + where();
+      break;
+    }
+    if (i >= longest) {
+      failure = "the walker did not reach the path's end in " +
+                common::number_text(kLongestPathWalk) + " s (" + where() + ")";
+      break;
+    }
+  }
+  return motion;
+}
+
+// Metres along a drawn path between the points of its view (the page draws the rounded corners
+// from them: a chord of 0.1 m on the tightest arc, 0.5 m, lies within 2.5 mm of it).
+constexpr double kPathSpacing = 0.1;
+
+// The path as the page draws it: the points and radius as given, its length, and the rounded
+// path every kPathSpacing (x, z, millimetres' precision) from its start to its end.
+json path_json(const WalkSettings& settings) {
+  if (!settings.route) return nullptr;
+  const path::Path& route = *settings.route;
+  json points = json::array();
+  for (const path::GroundPoint& p : settings.path)
+    points.push_back({p.x, p.z});
+  const auto count = static_cast<std::size_t>(std::ceil(route.length() / kPathSpacing - 1e-9));
+  std::vector<double> samples;
+  samples.reserve(2 * (count + 1));
+  for (std::size_t i = 0; i <= count; ++i) {
+    const path::PathSample at =
+        route.at(std::min(static_cast<double>(i) * kPathSpacing, route.length()));
+    samples.push_back(rounded(at.point.x, 1e3));
+    samples.push_back(rounded(at.point.z, 1e3));
+  }
+  return {{"points", points},
+          {"corner_radius", settings.corner_radius},
+          {"length", route.length()},
+          {"spacing", kPathSpacing},
+          {"samples", samples}};
+}
+
 }  // namespace
+
+std::optional<path::Path> drawn_path(const std::vector<path::GroundPoint>& points,
+                                     double corner_radius) {
+  if (points.empty()) return std::nullopt;
+  std::optional<path::Path> route;
+  try {
+    route = path::Path::polyline(points, corner_radius);
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(422, "path", e.what());
+  }
+  if (route->length() > Limits::kLongestPath) {
+    throw RequestError(422, "path",
+                       "the path is " + common::number_text(route->length(), 3) +
+                           " m long with its corners rounded; the studio walks paths of up to " +
+                           common::number_text(Limits::kLongestPath) + " m");
+  }
+  return route;
+}
 
 gait::Walker make_walker(const gait::ControllerSet& set, const WalkSettings& settings,
                          const terrain::Terrain& ground) {
@@ -148,7 +235,11 @@ Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
   const auto start = std::chrono::steady_clock::now();
   const gait::WalkerOptions options = walker_options(settings);
   double step = settings.step;
-  {
+  if (settings.route) {
+    gait::Walker walker(set, options, ground);
+    step = walker.step_length();
+    w.motion = record_path(walker, *settings.route, w.failure);
+  } else {
     gait::Walker walker(set, options, ground);
     step = walker.step_length();  // by speed, the stride's at the speed asked
     try {
@@ -157,7 +248,7 @@ Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
       w.failure = e.what();
     }
   }
-  if (!w.failure.empty()) {
+  if (!w.failure.empty() && !settings.route) {
     gait::Walker walker(set, options, ground);
     w.motion = eval::record(walker, stalled_duration(settings.cycles), kRecordFps);
   }
@@ -208,7 +299,7 @@ Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
   return w;
 }
 
-json walk_json(const Walked& walked, const terrain::Terrain& ground) {
+json walk_json(const Walked& walked, const terrain::Terrain& ground, const WalkSettings& settings) {
   const eval::Motion& m = walked.motion;
   const auto stride = static_cast<std::size_t>(std::lround(m.fps / kPageFps));
   std::vector<double> time;
@@ -253,6 +344,7 @@ json walk_json(const Walked& walked, const terrain::Terrain& ground) {
         {"ball", s.ball},
         {"toe", s.toe}}},
       {"body", body_json(walked.body)},
+      {"path", path_json(settings)},
       {"ground", ground_points},
       {"completed", walked.failure.empty()},
       {"warnings", walked.missed},

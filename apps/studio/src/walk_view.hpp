@@ -11,6 +11,7 @@
 #include "fuzzygait/eval/motion.hpp"
 #include "fuzzygait/gait/controllers.hpp"
 #include "fuzzygait/gait/walker.hpp"
+#include "fuzzygait/path/path.hpp"
 #include "fuzzygait/terrain/terrain.hpp"
 
 namespace fuzzygait::studio::detail {
@@ -22,7 +23,22 @@ struct WalkSettings {
   int cycles = 10;
   std::string terrain = "flat";  // the spec
   std::string reference = "schwartz2008_free";
+  // A path drawn on the ground (x, z metres as path::Path has them; empty: straight ahead) and
+  // the radius its corners are rounded to; `route` is made of them by drawn_path().
+  std::vector<path::GroundPoint> path;
+  double corner_radius = 1.0;
+  std::optional<path::Path> route;
 };
+
+// The path a walk follows for these points and corner radius: none for no points; else
+// path::Path::polyline of them. Throws RequestError 422 naming "path" (the point, from 1: repeated,
+// a corner too sharp for its legs, turning back) or the path too long (Limits::kLongestPath).
+std::optional<path::Path> drawn_path(const std::vector<path::GroundPoint>& points,
+                                     double corner_radius);
+
+// The longest a walk along a path is walked (s) when it neither reaches the path's end nor
+// stalls: over twice the longest path's time at the slowest steps.
+inline constexpr double kLongestPathWalk = 120.0;
 
 // Frames a second the walk is recorded at (as `fuzzygait walk` writes it), and sent to the page,
 // which plays it interpolated: a quarter of the frames keeps an edit's answer small (about 60 KB
@@ -44,8 +60,8 @@ struct Walked {
   std::string not_measured;
   std::vector<std::string> missed;  // contact bounds missed, one phrase each
   nlohmann::json figures;           // the contact figures with their bounds
-  // The whole body (body::PathFollower on a straight path, body::humanoid_from_stature) at
-  // kBodyFps, the set's upper body playing.
+  // The whole body (body::PathFollower on the settings' path, or a straight one;
+  // body::humanoid_from_stature) at kBodyFps, the set's upper body playing.
   std::vector<body::BodyPose> body;
   double walk_ms = 0.0;  // wall time of the walk, of posing the body and of measuring
   double body_ms = 0.0;
@@ -61,13 +77,17 @@ void check_walkable(const gait::ControllerSet& set, const WalkSettings& settings
 gait::Walker make_walker(const gait::ControllerSet& set, const WalkSettings& settings,
                          const terrain::Terrain& ground);
 
+// Walks the set: `settings.cycles` gait cycles straight ahead, or along `settings.route` until the
+// walker's pelvis reaches its end (then `failure` says when it stalls, 5 cm in 3 s, or has not
+// reached it in kLongestPathWalk).
 Walked walk(const gait::ControllerSet& set, const WalkSettings& settings,
             const terrain::Terrain& ground, const eval::Normative& reference);
 
 // The page's view: frames at kPageFps (time, pelvis, both legs' points, contacts), the body's
-// joints at kBodyFps, the ground under the walk, the mean curves with their scores, the figures
-// and the warnings.
-nlohmann::json walk_json(const Walked& walked, const terrain::Terrain& ground);
+// joints at kBodyFps, the path (null when straight), the ground under the walk, the mean curves
+// with their scores, the figures and the warnings.
+nlohmann::json walk_json(const Walked& walked, const terrain::Terrain& ground,
+                         const WalkSettings& settings);
 nlohmann::json reference_json(const eval::Normative& reference);
 
 }  // namespace fuzzygait::studio::detail

@@ -70,6 +70,12 @@ struct Limits {
   // most rules at their longest, each character written as JSON at worst ('"' and '\\' as two),
   // with quotes and commas, and room for the rest of the request.
   static constexpr std::size_t kLargestRulesBody = kMostRules * (2 * kLongestRule + 3) + 1024;
+  // A drawn path (settings' "path" and "corner_radius"): its points, its length once its corners
+  // are rounded (metres; the walk goes to its end, about 40 s at 1.3 m/s, an answer some 2.5
+  // times a 10-cycle walk's) and the largest corner radius (the smallest is path::Path's, 0.5 m).
+  static constexpr std::size_t kMostPathPoints = 256;
+  static constexpr double kLongestPath = 50.0;
+  static constexpr double kLargestCornerRadius = 20.0;
 };
 
 // A file to download: its name, MIME type and bytes.
@@ -122,9 +128,15 @@ class Studio {
   // second): for each of the eight slots' controllers the inputs it read there (from the leg it
   // drives), each rule's firing strength and the output, by the library's evaluator.
   nlohmann::json fired(const nlohmann::json& request);
-  // {"step": M, "speed": M/S, "stature": M, "terrain": SPEC, "cycles": N}, any of them: the new
-  // settings and walk. A speed above 0 walks by speed (the set's stride gives the step), a step
-  // or a speed of 0 by step length.
+  // {"step": M, "speed": M/S, "stature": M, "terrain": SPEC, "cycles": N, "path": [[X, Z], ...]
+  // or null, "corner_radius": M}, any of them: the new settings and walk. A speed above 0 walks
+  // by speed (the set's stride gives the step), a step or a speed of 0 by step length. A path
+  // (path::Path::polyline of the points, x and z metres on the ground as the library has them,
+  // corners rounded to corner_radius) is walked from its first point to its end, the whole body
+  // posed on it; null walks straight ahead for `cycles`. A path is refused (422 "path", naming the
+  // point) with fewer than 2 or more than Limits::kMostPathPoints points, a point repeated, a
+  // corner too sharp for its legs, or longer than Limits::kLongestPath; a corner_radius below
+  // path::Path::kSmallestRadius or above Limits::kLargestCornerRadius (422 "corner_radius").
   nlohmann::json change_settings(const nlohmann::json& request);
   // Steps back or forward through the history (an open too): the whole set, the set opened, the
   // history, the settings, the walk and the compared walk (which follows the set opened).
