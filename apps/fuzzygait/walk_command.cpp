@@ -1,8 +1,10 @@
 // `fuzzygait walk`: walks a character with a controller set and writes its files: the walk CSV,
 // the terrain, a BVH, the joint-angle curves against the normative band, and the poses.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -45,6 +47,7 @@ struct WalkOptions {
   double duration = 0.0;
   double fps = 120.0;
   std::string start_pose = "default";
+  std::string stop_at;  // where the walk stops: metres along it, or "end" (of the path)
   std::string prefix = "out/walk";
   std::string reference = "schwartz2008_free";
   bool gltf = false;
@@ -63,8 +66,11 @@ std::size_t write_body_walk(const gait::ControllerSet& set, const gait::WalkerOp
                             const terrain::Terrain& ground, const path::Path& route,
                             const body::Humanoid& humanoid, const body::Skeleton& skeleton,
                             const body::SkeletonPoser& poser, double fps, std::size_t frames,
-                            const std::string& prefix, bool gltf) {
+                            double stop_x, const std::string& prefix, bool gltf) {
   gait::Walker walker(set, options, ground);
+  walker.go();  // (a standing start walks at once)
+  walker.stop_at(stop_x);
+  std::size_t standing = 0;  // frames stood so far
   body::PathFollower follower(humanoid, route, walker);
   std::vector<double> travelled;
   const auto three_seconds = static_cast<std::size_t>(3.0 * fps);
@@ -79,7 +85,9 @@ std::size_t write_body_walk(const gait::ControllerSet& set, const gait::WalkerOp
                std::span(rotations).subspan(rotations.size() - poser.joint_count()), roots.back());
     travelled.push_back(walker.pose().pelvis.x);
     if (frames > 0) continue;
-    if (travelled.back() >= route.length() + 0.3) break;
+    standing = walker.standing() ? standing + 1 : 0;
+    if (standing > static_cast<std::size_t>(fps)) break;  // stopped, and stood a second
+    if (std::isnan(stop_x) && travelled.back() >= route.length() + 0.3) break;
     if (i >= three_seconds && travelled[i] - travelled[i - three_seconds] < 0.05) break;
   }
   io::write_file(prefix + ".body.bvh", [&](std::ostream& out) {
@@ -90,6 +98,22 @@ std::size_t write_body_walk(const gait::ControllerSet& set, const gait::WalkerOp
                             {.frame_time = 1.0 / fps});
   }
   return roots.size();
+}
+
+// A distance (m) given as text: a finite number, or invalid_argument naming the option.
+double parse_distance(const std::string& text, const std::string& option) {
+  std::size_t used = 0;
+  double value = std::numeric_limits<double>::quiet_NaN();
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(value)) {
+    throw std::invalid_argument(option + " must be a distance in metres or 'end', got '" + text +
+                                "'");
+  }
+  return value;
 }
 
 gait::StartPose parse_start(const std::string& text) {
@@ -110,8 +134,12 @@ gait::StartPose parse_start(const std::string& text) {
       }
     }
   }
-  throw std::invalid_argument("--start-pose must be 'default' or 'random:SEED', got '" + text +
-                              "'");
+  if (text == "standing") {
+    start.standing = true;
+    return start;
+  }
+  throw std::invalid_argument("--start-pose must be 'default', 'standing' or 'random:SEED', got '" +
+                              text + "'");
 }
 
 // The ground written around the walk (m): from before its first frame to after its last, so that
@@ -196,7 +224,12 @@ void add_walk_command(CLI::App& app) {
       ->check(CLI::Range(2, 10000));
   walk->add_option("--duration", o->duration, "Seconds to walk (instead of --cycles)");
   walk->add_option("--fps", o->fps, "Frames per second of the files, 10 to 2000 (default 120)");
-  walk->add_option("--start-pose", o->start_pose, "default, or random:SEED (awkward start)");
+  walk->add_option("--start-pose", o->start_pose,
+                   "default (mid-stride), standing (feet side by side, then walks), or random:SEED "
+                   "(awkward start)");
+  walk->add_option("--stop-at", o->stop_at,
+                   "Stops with the feet side by side at this distance along the walk (m), or at "
+                   "the --path's end ('end'), and stands there");
   walk->add_option("-o,--output", o->prefix, "Prefix of the files written (default out/walk)");
   walk->add_option("--reference", o->reference, "Normative curves for the plot and summary");
   walk->add_flag("--gltf", o->gltf,
@@ -319,20 +352,34 @@ void add_walk_command(CLI::App& app) {
     const std::filesystem::path prefix(o->prefix);
     if (prefix.has_parent_path()) std::filesystem::create_directories(prefix.parent_path());
     std::size_t body_frames = 0;
+    double stop_x = std::numeric_limits<double>::quiet_NaN();
+    if (o->stop_at == "end") {
+      if (!route) throw std::invalid_argument("--stop-at end stops at a --path's end: give one");
+      stop_x = route->length();
+    } else if (!o->stop_at.empty()) {
+      stop_x = parse_distance(o->stop_at, "--stop-at");
+    }
     if (whole_body && !o->path.empty() &&
         walk->count("--duration") + walk->count("--cycles") == 0) {
-      // Along a path with no length given: to its end, and the sagittal files as long.
+      // Along a path with no length given: to its end (or its stop), and the sagittal files as
+      // long.
       body_frames = write_body_walk(set, options, ground, *route, *humanoid, *skeleton, *poser,
-                                    o->fps, 0, o->prefix, o->gltf);
+                                    o->fps, 0, stop_x, o->prefix, o->gltf);
       o->duration = static_cast<double>(body_frames - 1) / o->fps;
+    } else if (!std::isnan(stop_x) && walk->count("--duration") + walk->count("--cycles") == 0) {
+      throw std::invalid_argument(
+          "--stop-at needs --duration (how long the walk lasts, standing "
+          "at the end) or a --path");
     }
     gait::Walker walker(set, options, ground);
+    walker.go();  // (a standing start walks at once)
+    walker.stop_at(stop_x);
     const double step = walker.step_length();
     const eval::Motion motion = o->duration > 0.0 ? eval::record(walker, o->duration, o->fps)
                                                   : eval::record_cycles(walker, o->cycles, o->fps);
     if (whole_body && body_frames == 0) {
       body_frames = write_body_walk(set, options, ground, *route, *humanoid, *skeleton, *poser,
-                                    o->fps, motion.frames.size(), o->prefix, o->gltf);
+                                    o->fps, motion.frames.size(), stop_x, o->prefix, o->gltf);
     }
     io::write_file(o->prefix + ".csv",
                    [&motion](std::ostream& out) { io::write_walk_csv(out, motion); });
@@ -397,7 +444,14 @@ void add_walk_command(CLI::App& app) {
     std::cout << "\n";
     // A frozen walk is a failure, not a walk: its files stay for a look, and the command fails
     // naming when and where the walk stopped.
-    if (const std::optional<eval::Stall> stall = eval::find_stall(motion, ground)) {
+    // (A walk told to stop is judged until its last steps to the spot.)
+    eval::Motion judged = motion;
+    if (!std::isnan(stop_x)) {
+      const double last_steps = stop_x - 2.0 * walker.max_step_length();
+      std::erase_if(judged.frames,
+                    [&](const eval::Frame& f) { return f.pose.pelvis.x >= last_steps; });
+    }
+    if (const std::optional<eval::Stall> stall = eval::find_stall(judged, ground)) {
       throw std::runtime_error(eval::describe(*stall, ground) + "; the files are written");
     }
   });

@@ -629,5 +629,56 @@ TEST(UpperBody, ASetWithoutItHangsTheArms) {
   }
 }
 
+TEST(UpperBody, ArmsHangWhileTheWalkerStandsAndSwingAgainAsItWalks) {
+  const gait::ControllerSet set = gait::ControllerSet::builtin("default");
+  const Humanoid humanoid = humanoid_from_stature(1.75);
+  gait::WalkerOptions options;
+  options.segments = humanoid.segments();
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::Walker walker(set, options, flat);
+  const path::Path straight;
+  PathFollower follower(humanoid, straight, walker);
+  // The left hand forward of its shoulder, m, and how far it moved in the last frame.
+  auto hand = [&] {
+    const BodyPose& pose = follower.update(walker);
+    return (pose[Joint::left_hand] - pose[Joint::left_upper_arm]).z;
+  };
+  double swing = 0.0;
+  for (int i = 0; i < 180; ++i) {
+    walker.advance(1.0 / 60.0);
+    swing = std::max(swing, std::abs(hand()));
+  }
+  EXPECT_GT(swing, 0.1);  // walking, the arm swings
+  walker.stop();
+  std::array<Vec3, 2> feet{};
+  for (int i = 0; i < 150; ++i) {
+    walker.advance(1.0 / 60.0);
+    const double before = hand();
+    EXPECT_LT(std::abs(before), 0.4);
+    if (walker.standing()) {
+      // Standing, the feet stay where they stand.
+      const BodyPose& pose = follower.pose();
+      for (int side = 0; side < 2; ++side) {
+        const Vec3 heel = pose.heel[static_cast<std::size_t>(side)];
+        if (feet[static_cast<std::size_t>(side)].y != 0.0) {
+          EXPECT_NEAR(heel.x, feet[static_cast<std::size_t>(side)].x, 1e-6);
+          EXPECT_NEAR(heel.z, feet[static_cast<std::size_t>(side)].z, 1e-6);
+        }
+        feet[static_cast<std::size_t>(side)] = heel;
+        feet[static_cast<std::size_t>(side)].y = 1.0;
+      }
+    }
+  }
+  ASSERT_TRUE(walker.standing());
+  EXPECT_NEAR(hand(), 0.0, 1e-9);  // half a second after: hanging
+  walker.go();
+  swing = 0.0;
+  for (int i = 0; i < 180; ++i) {
+    walker.advance(1.0 / 60.0);
+    swing = std::max(swing, std::abs(hand()));
+  }
+  EXPECT_GT(swing, 0.1);
+}
+
 }  // namespace
 }  // namespace fuzzygait::body

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -290,6 +291,37 @@ TEST(StartStop, SameCallsGiveTheSameBitsAndCrowdsStopAsLoneWalkers) {
   }
   EXPECT_FALSE(crowd.stop(3));
   EXPECT_FALSE(crowd.go(3));
+}
+
+TEST(StartStop, StopsWithTheFeetSideBySideAtASpot) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  for (const double step : {0.55, 0.70, 0.85}) {
+    for (const double spot : {4.0, 5.37, 6.81, 9.2}) {
+      SCOPED_TRACE("step " + std::to_string(step) + " m, spot " + std::to_string(spot) + " m");
+      gait::Walker w = walker_on(ground, step, 1.75);
+      w.advance(1.0);
+      ASSERT_LT(w.points(rig::Side::Left).heel.x, spot - 1.5);
+      w.stop_at(spot);
+      const Watch watched = watch(w, ground, 12.0);
+      ASSERT_TRUE(w.standing());
+      EXPECT_LT(watched.slip, 1e-5);
+      EXPECT_LT(watched.joint_speed, kFastestJoint);
+      const rig::LegPoints l = w.points(rig::Side::Left);
+      const rig::LegPoints r = w.points(rig::Side::Right);
+      EXPECT_NEAR(l.heel.x, r.heel.x, 1e-3);
+      EXPECT_NEAR(l.heel.x, spot, 0.03);  // as near as the walker lands any step
+    }
+  }
+  // A spot behind the feet stops at once; NaN changes nothing.
+  gait::Walker w = walker_on(ground, 0.70, 1.75);
+  w.advance(2.0);
+  w.stop_at(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(w.locomotion(), gait::Locomotion::Walking);
+  const double x = w.state().pelvis.x;
+  w.stop_at(0.0);
+  w.advance(3.0);
+  EXPECT_TRUE(w.standing());
+  EXPECT_LT(w.state().pelvis.x - x, 1.5);
 }
 
 // People starting from standing reach 90 % of their steady speed with the third step, and

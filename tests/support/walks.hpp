@@ -46,6 +46,7 @@ inline std::string state_difference(const gait::WalkerState& a, const gait::Walk
   if (a.locomotion != b.locomotion) return "locomotion";
   if (a.placed_leg != b.placed_leg) return "placed leg";
   if (a.go_when_standing != b.go_when_standing) return "go when standing";
+  if (differ(a.stop_x, b.stop_x)) return "stop x";
   if (differ(a.brake_distance, b.brake_distance)) return "brake distance";
   if (differ(a.pelvis_velocity.x, b.pelvis_velocity.x) ||
       differ(a.pelvis_velocity.y, b.pelvis_velocity.y)) {

@@ -16,8 +16,9 @@
 //   body     swing at shoulder and elbow against their own legs, the pelvis and the chest turn
 //            about the vertical with the legs, the chest against the pelvis; the pelvis rolls
 //            (obliquity) and sways sideways over the feet; a set without them hangs the arms and
-//            keeps pelvis and chest square to the path, over it. The trunk stays upright; the
-//            head turns to the path look_ahead metres ahead.
+//            keeps pelvis and chest square to the path, over it, as a standing walker does
+//            (the answers fade out over half a second as it stands, and in as it walks on).
+//            The trunk stays upright; the head turns to the path look_ahead metres ahead.
 // On a straight path with step_width equal to the hip width the legs are the walker's to
 // rounding.
 #pragma once
@@ -109,6 +110,10 @@ class PathFollower {
   const gait::ControllerSet* set_;            // the walker's set, whose upper body plays
   std::vector<fuzzy::Workspace> workspaces_;  // one per upper body controller of set_
   double last_time_ = -1.0;                   // the walker's time at the last update
+  // How much of the upper body's answers plays: 1 walking, easing to 0 (arms hanging, pelvis and
+  // chest square) over kUpperBodyEasing seconds once the walker stands, and back when it walks.
+  double upper_body_share_ = 1.0;
+  static constexpr double kUpperBodyEasing = 0.5;
   BodyPose pose_{};
   double drop_ = 0.0;
 };

@@ -102,6 +102,9 @@ struct WalkerState {
   // stopping, the closing step; starting, the first step.
   int placed_leg = -1;
   bool go_when_standing = false;  // go() came while a closing step was in the air
+  // Walking to stop at a spot (stop_at()): where the feet are to stand (m along the walk); NaN
+  // for none.
+  double stop_x = std::numeric_limits<double>::quiet_NaN();
   // Stopping: how far the pelvis had to go to stand over the planted foot when the closing step
   // lifted (m); the planted leg brakes in proportion to what is left of it.
   double brake_distance = 0.0;
@@ -192,6 +195,12 @@ class Walker {
   // them (about a step and a half from a walk: standing() then). The pace commanded is kept for
   // go(). Nothing while standing or already stopping.
   void stop() noexcept;
+  // Stops with the feet side by side at x (m along the walk, the heels' x): the steps still to
+  // take lengthen or shorten evenly, within min_step_length() to max_step_length(), so that a
+  // foot lands there and the other closes beside it. A spot nearer than the shortest step stops
+  // as stop() does, or one shortest step on, whichever is nearer; a spot behind the planted foot
+  // stops at once. NaN changes nothing. Nothing while standing or stopping.
+  void stop_at(double x) noexcept;
   // Walks on from standing: the foot further behind (the left, side by side) steps first, a short
   // step, the body accelerating from rest over the first steps at the pace commanded. Stopping,
   // the stop is called off; once the closing step is in the air, the walker walks on as soon as

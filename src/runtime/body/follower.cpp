@@ -58,7 +58,11 @@ double smoothstep(double t) {
 
 PathFollower::PathFollower(const Humanoid& humanoid, const path::Path& path,
                            const gait::Walker& walker, const FollowerOptions& options)
-    : humanoid_(humanoid), path_(&path), options_(options), set_(&walker.controllers()) {
+    : humanoid_(humanoid),
+      path_(&path),
+      options_(options),
+      set_(&walker.controllers()),
+      upper_body_share_(walker.standing() ? 0.0 : 1.0) {
   validate(humanoid_);
   auto check = [](const char* field, double value, double low, double high) {
     if (!std::isfinite(value) || value < low || value > high) {
@@ -108,7 +112,7 @@ double PathFollower::upper_body_answer(const gait::ControllerSet& set, gait::Upp
   const auto& controller = set.upper_body[p];
   if (!options_.upper_body || !controller || &set != set_) return 0.0;
   const double answer = controller->evaluate(metrics, workspaces_[p]);
-  return std::isfinite(answer) ? answer : 0.0;
+  return std::isfinite(answer) ? answer * upper_body_share_ : 0.0;
 }
 
 double PathFollower::upper_body_angle(const gait::ControllerSet& set, gait::UpperBody part,
@@ -130,7 +134,15 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
   const Quat facing = yaw(at_hips.heading);
   // Each side turns forward by the answer to the other side's leg; the body turns right (heading
   // turns left +) as its left side comes forward.
-  if (walker.time() < last_time_) feet_ = {};  // started again: nothing stands where it stood
+  // The upper body plays while the walker walks and fades to rest while it stands.
+  const double moving = walker.standing() ? 0.0 : 1.0;
+  if (walker.time() < last_time_) {
+    feet_ = {};  // started again: nothing stands where it stood
+    upper_body_share_ = moving;
+  } else if (!(upper_body_share_ == moving)) {
+    const double most = (walker.time() - last_time_) / kUpperBodyEasing;
+    upper_body_share_ += std::clamp(moving - upper_body_share_, -most, most);
+  }
   last_time_ = walker.time();
   const gait::ControllerSet& set = walker.controllers();
   const std::array<gait::MetricValues, 2> metrics = {leg_metrics(walker, 0),

@@ -367,8 +367,14 @@ void Walker::stop() noexcept {
   state_.placed_leg = -1;
 }
 
+void Walker::stop_at(double x) noexcept {
+  if (state_.locomotion != Locomotion::Walking || std::isnan(x)) return;
+  state_.stop_x = x;
+}
+
 void Walker::go() noexcept {
   WalkerState& s = state_;
+  s.stop_x = std::numeric_limits<double>::quiet_NaN();
   if (s.locomotion == Locomotion::Walking) return;
   if (s.locomotion == Locomotion::Stopping) {
     // Before the closing step lifts, the stop is called off; after, the walker walks on once it
@@ -905,7 +911,22 @@ void Walker::lift_off(int leg, double step) {
   // A step of the commanded length along the ground, moved to where the whole foot stands on one
   // tread, at most a stair up or down from the tread the other foot stands on.
   l.step_from_x = l.strike_x;
-  if (state_.locomotion == Locomotion::Stopping && other) {
+  bool closing = state_.locomotion == Locomotion::Stopping;
+  if (other && !std::isnan(state_.stop_x) && !closing) {
+    // Walking to a spot: as many even steps as reach it, the last onto it (the foot after it
+    // closes beside it); one nearer than the shortest step: closing now or a shortest step on,
+    // whichever ends nearer.
+    const double left = state_.stop_x - from;
+    const double shortest = min_step_length();
+    closing = left < shortest && left < shortest - left;
+    const double steps = left < shortest ? 1.0 : std::max(1.0, std::round(left / step));
+    step = std::clamp(left / steps, shortest, max_step_length());
+    if (closing || steps == 1.0) {
+      state_.locomotion = Locomotion::Stopping;
+      state_.stop_x = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  if (closing && other) {
     // The closing step: heel beside the planted heel, on its run; the planted leg brakes the
     // body until it stands over that foot.
     l.target_x = other->strike_x;
