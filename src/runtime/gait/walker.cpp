@@ -675,9 +675,11 @@ bool Walker::place_step(int leg, double h) {
   const rig::Segments& g = segments_;
   auto minimum_jerk = [](double u) { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); };
   const double u = std::clamp((s.time + h - l.swing_start) / s.placed_duration, 0.0, 1.0);
-  const double along = minimum_jerk(u);
-  // A first step lands on its heel, the toes up, its foot pointing down mid-way as people's does.
   const bool first = s.locomotion == Locomotion::Walking;
+  // (A first step's heel rises a tenth of the way before the foot goes forward: its toes leave
+  // the ground rather than skim it.)
+  const double along = minimum_jerk(first ? std::max(0.0, (u - 0.1) / 0.9) : u);
+  // A first step lands on its heel, the toes up, its foot pointing down mid-way as people's does.
   // The lift (of kClosingLift) comes down with no speed at the landing; a first step's foot
   // leaves the ground from rest, a closing step's heel is rising already (as fast as a walk's
   // at toe off; it peaks at 0.58 a third of the way).
