@@ -68,10 +68,10 @@ std::size_t write_body_walk(const gait::ControllerSet& set, const gait::WalkerOp
                             const body::SkeletonPoser& poser, double fps, std::size_t frames,
                             double stop_x, const std::string& prefix, bool gltf) {
   gait::Walker walker(set, options, ground);
-  walker.go();  // (a standing start walks at once)
+  body::PathFollower follower(humanoid, route, walker);
+  walker.go();  // (a standing start walks at once, the arms joining in as it goes)
   walker.stop_at(stop_x);
   std::size_t standing = 0;  // frames stood so far
-  body::PathFollower follower(humanoid, route, walker);
   std::vector<double> travelled;
   const auto three_seconds = static_cast<std::size_t>(3.0 * fps);
   std::vector<body::Quat> rotations;

@@ -312,16 +312,91 @@ TEST(StartStop, StopsWithTheFeetSideBySideAtASpot) {
       EXPECT_NEAR(l.heel.x, spot, 0.03);  // as near as the walker lands any step
     }
   }
-  // A spot behind the feet stops at once; NaN changes nothing.
+  // A spot behind the feet stops at once; NaN or infinity changes nothing.
   gait::Walker w = walker_on(ground, 0.70, 1.75);
   w.advance(2.0);
   w.stop_at(std::numeric_limits<double>::quiet_NaN());
+  w.stop_at(std::numeric_limits<double>::infinity());
+  EXPECT_TRUE(std::isnan(w.state().stop_x));
   EXPECT_EQ(w.locomotion(), gait::Locomotion::Walking);
   const double x = w.state().pelvis.x;
   w.stop_at(0.0);
   w.advance(3.0);
   EXPECT_TRUE(w.standing());
   EXPECT_LT(w.state().pelvis.x - x, 1.5);
+}
+
+TEST(StartStop, TheLastOfStopAndGoWinsAndAFirstStepLandsAsPlaced) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  // go() while the closing step is in the air, then stop(): the walker stands.
+  gait::Walker a = walker_on(ground, 0.70, 1.75);
+  a.advance(4.0);
+  a.stop();
+  while (a.state().placed_leg < 0)
+    a.advance(kFrame);
+  a.go();
+  a.stop();
+  a.advance(3.0);
+  EXPECT_TRUE(a.standing());
+  // stop() and go() in turn every few frames from standing: never a fall, a slip or a jump.
+  gait::Walker b = walker_on(ground, 0.70, 1.75, true);
+  const double standing_height = b.state().pelvis.y;
+  double lowest = standing_height;
+  Watch worst;
+  for (int i = 0; i < 60 * 6; ++i) {
+    if (i % 14 == 0) b.stop();
+    if (i % 14 == 7) b.go();
+    const Watch w = watch(b, ground, 1.0 / 60.0);
+    worst.slip = std::max(worst.slip, w.slip);
+    worst.joint_speed = std::max(worst.joint_speed, w.joint_speed);
+    lowest = std::min(lowest, b.state().pelvis.y);
+  }
+  EXPECT_LT(worst.slip, 1e-5);
+  EXPECT_LT(worst.joint_speed, kFastestJoint);
+  EXPECT_GT(lowest, standing_height - 0.08);  // no deeper than a walk's own dip
+  // A stop during the first step: it lands where it was placed, the next foot closes beside it.
+  gait::Walker c = walker_on(ground, 0.70, 1.75, true);
+  c.go();
+  c.advance(0.2);
+  ASSERT_EQ(c.state().placed_leg, 0);
+  c.stop();
+  const Watch stopping = watch(c, ground, 3.0);
+  EXPECT_TRUE(c.standing());
+  EXPECT_EQ(stopping.strikes, 2);
+  EXPECT_NEAR(c.points(rig::Side::Left).heel.x, c.points(rig::Side::Right).heel.x, 1e-3);
+  EXPECT_LT(stopping.joint_speed, kFastestJoint);
+}
+
+TEST(StartStop, StopsTeachNoCadenceAndAStandingStartStandsOnATread) {
+  const terrain::Terrain flat = terrain::Terrain::flat();
+  gait::WalkerOptions o;
+  o.speed = 1.3;
+  gait::Walker w(default_set(), o, flat);
+  w.advance(8.0);
+  const double learnt = w.state().tempo_gain_target;
+  for (int i = 0; i < 3; ++i) {
+    w.stop();
+    w.advance(3.0);
+    ASSERT_TRUE(w.standing());
+    w.go();
+    w.advance(1.5);  // the first steps, still accelerating: they teach nothing
+    EXPECT_EQ(w.state().tempo_gain_target, learnt);
+    w.stop_at(w.state().pelvis.x + 2.0);
+    w.advance(4.0);
+    EXPECT_EQ(w.state().tempo_gain_target, learnt);
+    w.go();
+  }
+  // Made standing in front of a stair, both feet flat on one tread.
+  const terrain::Terrain stairs = terrain::Terrain::stairs(0.17, 0.28, 10, 0.05);
+  gait::WalkerOptions s;
+  s.start.standing = true;
+  gait::Walker on_stairs(default_set(), s, stairs);
+  for (rig::Side side : rig::kSides) {
+    const rig::LegPoints p = on_stairs.points(side);
+    EXPECT_NEAR(p.heel.y, stairs.height(p.heel.x), 1e-9);
+    EXPECT_NEAR(p.ball.y, p.heel.y, 1e-9);
+    EXPECT_EQ(stairs.run_at(p.heel.x), stairs.run_at(p.ball.x));
+  }
 }
 
 // People starting from standing reach 90 % of their steady speed with the third step, and

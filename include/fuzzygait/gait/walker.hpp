@@ -101,6 +101,7 @@ struct WalkerState {
   // The leg whose step is placed rather than swung by its controllers, while it is in the air:
   // stopping, the closing step; starting, the first step.
   int placed_leg = -1;
+  bool placed_first = false;      // the placed step is a start's first step (else a closing step)
   bool go_when_standing = false;  // go() came while a closing step was in the air
   // Walking to stop at a spot (stop_at()): where the feet are to stand (m along the walk); NaN
   // for none.
@@ -128,8 +129,8 @@ struct StartPose {
   // The default start walks this long (s) before time 0 on level ground, so that the character
   // starts in its own steady gait; 0 starts straight from the mid-stride pose.
   double warm_up = 3.0;
-  // Standing still, the feet side by side under the pelvis at x = 0 (random and warm_up are then
-  // ignored): the walker stands until go().
+  // Standing still, the feet side by side under the pelvis at x = 0 (on stairs, on the tread
+  // nearest; random and warm_up are then ignored): the walker stands until go().
   bool standing = false;
 };
 
@@ -199,7 +200,8 @@ class Walker {
   // take lengthen or shorten evenly, within min_step_length() to max_step_length(), so that a
   // foot lands there and the other closes beside it. A spot nearer than the shortest step stops
   // as stop() does, or one shortest step on, whichever is nearer; a spot behind the planted foot
-  // stops at once. NaN changes nothing. Nothing while standing or stopping.
+  // stops at once. NaN or an infinite x changes nothing. Nothing while standing or stopping.
+  // stop() calls a spot off (and stops at once).
   void stop_at(double x) noexcept;
   // Walks on from standing: the foot further behind (the left, side by side) steps first, a short
   // step, the body accelerating from rest over the first steps at the pace commanded. Stopping,
@@ -272,6 +274,7 @@ class Walker {
   rig::Point flat_ankle(const LegState& l) const;
   double braking_speed() const;
   bool place_step(int leg, double h);
+  bool closing_step_in_air() const noexcept;
   void record(rig::Side side, Event event, rig::Point where);
   void strike(int leg, Phase phase, rig::Point contact);
   void lift_off(int leg);

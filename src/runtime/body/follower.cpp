@@ -62,6 +62,7 @@ PathFollower::PathFollower(const Humanoid& humanoid, const path::Path& path,
       path_(&path),
       options_(options),
       set_(&walker.controllers()),
+      last_time_(walker.time()),
       upper_body_share_(walker.standing() ? 0.0 : 1.0) {
   validate(humanoid_);
   auto check = [](const char* field, double value, double low, double high) {

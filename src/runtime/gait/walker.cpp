@@ -362,24 +362,31 @@ double Walker::set_speed(double metres_per_second) noexcept {
 }
 
 void Walker::stop() noexcept {
+  // (The last call wins: a go() waiting for the walker to stand is called off.)
+  state_.go_when_standing = false;
+  state_.stop_x = std::numeric_limits<double>::quiet_NaN();
   if (state_.locomotion != Locomotion::Walking) return;
+  // (A first step in the air lands as placed; the foot after it closes.)
   state_.locomotion = Locomotion::Stopping;
-  state_.placed_leg = -1;
 }
 
 void Walker::stop_at(double x) noexcept {
-  if (state_.locomotion != Locomotion::Walking || std::isnan(x)) return;
+  if (state_.locomotion != Locomotion::Walking || !std::isfinite(x)) return;
   state_.stop_x = x;
+}
+
+bool Walker::closing_step_in_air() const noexcept {
+  return state_.placed_leg >= 0 && !state_.placed_first;
 }
 
 void Walker::go() noexcept {
   WalkerState& s = state_;
-  s.stop_x = std::numeric_limits<double>::quiet_NaN();
   if (s.locomotion == Locomotion::Walking) return;
+  s.stop_x = std::numeric_limits<double>::quiet_NaN();
   if (s.locomotion == Locomotion::Stopping) {
     // Before the closing step lifts, the stop is called off; after, the walker walks on once it
     // stands still.
-    if (s.placed_leg < 0) {
+    if (!closing_step_in_air()) {
       s.locomotion = Locomotion::Walking;
     } else {
       s.go_when_standing = true;
@@ -407,6 +414,7 @@ void Walker::go() noexcept {
   const LegPoints from = points(static_cast<rig::Side>(stepping));
   lift_off(stepping, std::max(min_step_length(), kFirstStep * step_length()));
   s.placed_leg = stepping;
+  s.placed_first = true;
   s.placed_from = from.heel;
   s.placed_pitch = foot_of(s.pelvis_tilt, step.angles);
   s.placed_duration = kFirstSwing;
@@ -632,14 +640,18 @@ void Walker::start(const StartPose& start_pose) {
 void Walker::start_standing() {
   const rig::Segments& s = segments_;
   const rig::detail::SinCos ground = sin_cos(terrain_->slope(0.0));
-  const double heel_x = -(s.heel * ground.cos - s.ankle_height * ground.sin);
+  // The whole foot on one run: on stairs, the tread nearest.
+  const double wanted = -(s.heel * ground.cos - s.ankle_height * ground.sin);
+  const terrain::Terrain::Foothold foothold =
+      terrain_->foothold(wanted, wanted, s.foot_length(), kFootholdMargin);
+  const double heel_x = terrain_->point_on_run(foothold.heel_x, foothold.run);
   for (LegState& l : state_.legs) {
     l.phase = Phase::Flat;
     l.anchor = {heel_x, terrain_->height(heel_x)};
     l.strike_x = heel_x;
     l.step_from_x = heel_x;
     l.target_x = heel_x;
-    l.target_run = terrain_->run_at(heel_x);
+    l.target_run = foothold.run;
     l.angles = {state_.pelvis_tilt, kStandingKnee, 0.0, 0.0};
   }
   state_.pelvis = standing_pelvis();
@@ -655,7 +667,7 @@ void Walker::start_standing() {
 // rate does; infinity otherwise.
 double Walker::braking_speed() const {
   const WalkerState& s = state_;
-  if (s.locomotion != Locomotion::Stopping || s.placed_leg < 0 || s.lead < 0 ||
+  if (s.locomotion != Locomotion::Stopping || !closing_step_in_air() || s.lead < 0 ||
       s.lead == s.placed_leg) {
     return std::numeric_limits<double>::infinity();
   }
@@ -675,7 +687,7 @@ bool Walker::place_step(int leg, double h) {
   const rig::Segments& g = segments_;
   auto minimum_jerk = [](double u) { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); };
   const double u = std::clamp((s.time + h - l.swing_start) / s.placed_duration, 0.0, 1.0);
-  const bool first = s.locomotion == Locomotion::Walking;
+  const bool first = s.placed_first;
   // (A first step's heel rises a tenth of the way before the foot goes forward: its toes leave
   // the ground rather than skim it.)
   const double along = minimum_jerk(first ? std::max(0.0, (u - 0.1) / 0.9) : u);
@@ -863,8 +875,10 @@ void Walker::strike(int leg, Phase phase, Point contact) {
   l.strike_x = phase == Phase::Ball ? contact.x - segments_.heel - segments_.ball : contact.x;
   l.sweep_start = thigh_of(tilt, l.angles);
   l.sweep_end = stance_target();
+  // (Only steady steps teach: not a placed one, nor those resized to reach a spot.)
   if (by_speed_ && state_.heel_strikes >= kStrikesBeforeTempoLearning &&
-      state_.speed == speed_target_) {
+      state_.speed == speed_target_ && state_.locomotion == Locomotion::Walking &&
+      state_.placed_leg < 0 && std::isnan(state_.stop_x)) {
     // A steady walk by speed: the step just ended took `took` where the speed asks for `wanted`;
     // play the controllers that much faster or slower, half-way (the square root) so that one
     // odd step does not swing the cadence.
@@ -934,6 +948,7 @@ void Walker::lift_off(int leg, double step) {
     l.target_x = other->strike_x;
     l.target_run = terrain_->run_at(other->anchor.x);
     state_.placed_leg = leg;
+    state_.placed_first = false;
     state_.brake_distance = std::max(flat_ankle(*other).x - state_.pelvis.x, 1e-3);
     state_.placed_from = p.heel;
     state_.placed_pitch = foot_of(state_.pelvis_tilt, l.angles);
@@ -1083,7 +1098,7 @@ void Walker::settle_foot(int leg, const LegAngles& commanded) {
     case Phase::Flat: {
       const double flat = slope - shank_of(tilt, l.angles);
       // (Braking for a stop, the heel stays down.)
-      const bool braking = state_.locomotion == Locomotion::Stopping && state_.placed_leg >= 0;
+      const bool braking = state_.locomotion == Locomotion::Stopping && closing_step_in_air();
       if (commanded.ankle < flat && !braking) {
         // The controller lets the ankle dorsiflex slower than the shank rolls over the foot:
         // the heel lifts (the calf holds the shin back).
@@ -1521,6 +1536,11 @@ void WalkerStages::carry(Walker& w, double h, const StepData& d,
       const JointPair by{share, share};
       store(angles, {from.hip_knee + (to.hip_knee - from.hip_knee) * by,
                      from.ankle_toe + (to.ankle_toe - from.ankle_toe) * by});
+      LegState& carrying = w.state_.legs[static_cast<std::size_t>(lead)];
+      if (carrying.phase == Phase::Flat) {
+        // (A foot flat already stays flat however little the leg moved.)
+        carrying.angles.ankle = w.sole_angle(carrying) - shank_of(tilt, carrying.angles);
+      }
       place_pelvis(w, lead, hip_at_origin(w, lead));
     }
     if (w.state_.locomotion == Locomotion::Stopping) {
@@ -1533,9 +1553,10 @@ void WalkerStages::carry(Walker& w, double h, const StepData& d,
     LegState& l = w.state_.legs[static_cast<std::size_t>(leg)];
     if (l.phase == Phase::Swing && leg == w.state_.placed_leg) {
       // A stop's closing step or a start's first step: placed until it is down.
+      const bool closed = !w.state_.placed_first;
       if (!w.place_step(leg, h)) break;
       w.state_.placed_leg = -1;
-      if (w.state_.locomotion == Locomotion::Stopping) {
+      if (closed) {
         w.state_.locomotion = Locomotion::Standing;
         break;
       }
