@@ -184,7 +184,6 @@ TEST(StartStop, StartsFromStandingWithAShortFirstStepAndWalksOn) {
     const double went = w.time();
     double first_strike = -1.0;
     double first_step = 0.0;
-    Watch starting;
     for (int i = 0; i < 240 && first_strike < 0.0; ++i) {
       w.clear_events();
       w.advance(kFrame);
