@@ -268,6 +268,16 @@ void bind_sets_and_ground(py::module_& m) {
       .def_readonly("pelvis_tilt", &gait::ControllerSet::pelvis_tilt)
       .def_readonly("cadence", &gait::ControllerSet::cadence)
       .def_readonly("acceleration", &gait::ControllerSet::acceleration)
+      .def_property_readonly(
+          "numbers",
+          [](const gait::ControllerSet& set) {
+            py::dict numbers;
+            for (const gait::ControllerSet::ManifestNumber& n :
+                 gait::ControllerSet::manifest_numbers())
+              numbers[n.key] = n.get(set);
+            return numbers;
+          },
+          "Every manifest number by its key, in the manifest's units.")
       .def_readonly("body_step_length", &gait::ControllerSet::body_step_length)
       .def_readonly("body_speed", &gait::ControllerSet::body_speed)
       .def_property_readonly("body",

@@ -492,6 +492,12 @@ const PARAMETER_LABELS = {
   shortest_step_leg_lengths: 'shortest step (leg lengths)',
   cadence_steps_per_min: 'cadence it is written for (steps/min)',
   acceleration_m_s2: 'acceleration (m/s²)',
+  first_step_share: 'first step (share of a step)',
+  first_step_s: 'first step swing (s)',
+  start_tempo_share: 'starting tempo (share)',
+  start_easing_s: 'start easing (s)',
+  closing_lift_leg_lengths: 'closing step lift (leg lengths)',
+  settle_rate_per_s: 'settling rate (1/s)',
 };
 function buildParameters() {
   for (const c of [...parameterGui.controllers]) c.destroy();

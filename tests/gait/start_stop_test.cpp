@@ -428,4 +428,66 @@ TEST(StartStop, TheThirdStepIsAtTheWalksSpeedAsPeoplesIs) {
   }
 }
 
+// The start and stop numbers are the set's (its manifest's): a set asking for a longer, slower
+// first step, a lower closing step and a quicker settle walks them.
+TEST(StartStop, TheSetsStartAndStopNumbersShapeTheStartAndStop) {
+  const terrain::Terrain ground = terrain::Terrain::flat();
+  auto first_step = [&](const gait::ControllerSet& set) {
+    gait::WalkerOptions o;
+    o.step_length = 0.7;
+    o.start.standing = true;
+    gait::Walker w(set, o, ground);
+    const double heel = w.points(rig::Side::Left).heel.x;
+    w.go();
+    for (int i = 0; i < 480; ++i) {
+      w.clear_events();
+      w.advance(kFrame);
+      for (const gait::EventRecord& e : w.events())
+        if (e.event == gait::Event::HeelStrike) return std::array{e.time, e.where.x - heel};
+    }
+    return std::array{-1.0, 0.0};
+  };
+  auto stop = [&](const gait::ControllerSet& set) {
+    gait::WalkerOptions o;
+    o.step_length = 0.7;
+    gait::Walker w(set, o, ground);
+    w.advance(3.0);
+    const double asked = w.time();
+    w.stop();
+    // The closing step's heel above the ground mid-way (m): it comes down from where it lifted
+    // along a line, plus the lift.
+    double highest = -1.0;
+    for (int i = 0; i < 240 && !w.standing(); ++i) {
+      w.advance(kFrame);
+      const gait::WalkerState& s = w.state();
+      if (s.placed_leg < 0) continue;
+      const gait::LegState& l = s.legs[static_cast<std::size_t>(s.placed_leg)];
+      const double u = (s.time - l.swing_start) / s.placed_duration;
+      if (u > 0.45 && u < 0.55)
+        highest = std::max(highest, w.points(static_cast<rig::Side>(s.placed_leg)).heel.y);
+    }
+    const Watch settling = watch(w, ground, 3.0);
+    return std::array{highest, settling.still_at - asked};
+  };
+  gait::ControllerSet brisk = default_set();
+  brisk.first_step = 0.95;
+  brisk.first_step_duration = 0.7;
+  brisk.closing_lift = 0.06;
+  brisk.settle_rate = 14.0;
+  const auto usual_start = first_step(default_set());
+  const auto brisk_start = first_step(brisk);
+  EXPECT_NEAR(usual_start[0], 0.5, 0.01);
+  EXPECT_NEAR(brisk_start[0], 0.7, 0.01);
+  EXPECT_NEAR(usual_start[1], 0.8 * 0.7, 0.01);
+  EXPECT_NEAR(brisk_start[1], 0.95 * 0.7, 0.01);
+  const auto usual_stop = stop(default_set());
+  const auto brisk_stop = stop(brisk);
+  ASSERT_GT(usual_stop[0], 0.0);
+  ASSERT_GT(brisk_stop[0], 0.0);
+  EXPECT_LT(brisk_stop[0], usual_stop[0] - 0.02);
+  ASSERT_GT(usual_stop[1], 0.0);
+  ASSERT_GT(brisk_stop[1], 0.0);
+  EXPECT_LT(brisk_stop[1], usual_stop[1] - 0.2);
+}
+
 }  // namespace

@@ -1,4 +1,5 @@
 """Sets, grounds and a walker from Python: the walk is the C++ walk, bit for bit."""
+import json
 import math
 
 import numpy as np
@@ -87,6 +88,23 @@ def test_sets_load_built_in_by_name_and_from_a_folder():
     assert np.array_equal(by_name.angles, by_folder.angles)
     assert np.array_equal(by_name.angles, by_path.angles)
     assert by_folder.set is folder
+
+
+def test_a_sets_manifest_numbers_read_back_by_key(tmp_path):
+    numbers = fg.ControllerSet.builtin("default").numbers
+    assert numbers["cadence_steps_per_min"] == pytest.approx(110.0)
+    assert numbers["first_step_share"] == pytest.approx(0.8)
+    assert numbers["settle_rate_per_s"] == pytest.approx(7.0)
+    folder = tmp_path / "brisk"
+    folder.mkdir()
+    for f in (SOURCE_DIR / "controllers" / "default").iterdir():
+        (folder / f.name).write_text(f.read_text())
+    manifest = json.loads((folder / "manifest.json").read_text())
+    manifest["first_step_share"] = 0.95
+    (folder / "manifest.json").write_text(json.dumps(manifest))
+    brisk = fg.ControllerSet.load(folder)
+    assert brisk.numbers["first_step_share"] == pytest.approx(0.95)
+    assert brisk.numbers["inertia_s"] == pytest.approx(numbers["inertia_s"])
 
 
 def test_a_walker_walks_forward_and_shows_its_pose_points_contacts_and_events():

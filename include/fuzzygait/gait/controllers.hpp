@@ -153,6 +153,18 @@ struct ControllerSet {
   double cadence = 110.0;
   // How briskly the walk changes its speed, m/s^2 (people: about 0.5-1).
   double acceleration = 0.6;
+  // Starting from standing (Walker::go()): the first step is this share of the commanded one
+  // (people's is shorter) and swings for this long (s); the controllers start at this share of
+  // their tempo and reach all of it over start_easing seconds, so the body speeds up from rest.
+  double first_step = 0.8;
+  double first_step_duration = 0.5;
+  double start_tempo = 0.4;
+  double start_easing = 1.0;
+  // Stopping (Walker::stop()): the closing step lifts its heel this high mid-way (leg lengths),
+  // and the standing body settles over its feet critically damped at this rate (1/s: within 5 %
+  // of rest after 4.7 / rate seconds).
+  double closing_lift = 0.12;
+  double settle_rate = 7.0;
   std::vector<Controller> controllers;  // indexed by slot()
   // How long a step people take at each pace (the manifest's "stride": an FLL file reading
   // "pace" and answering "step" in leg lengths, rising with the pace). What the walker makes of a

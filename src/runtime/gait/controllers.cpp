@@ -587,7 +587,7 @@ ControllerSet ControllerSet::parse(std::string_view manifest_text,
 
 std::span<const ControllerSet::ManifestNumber> ControllerSet::manifest_numbers() {
   using S = ControllerSet;
-  static const std::array<ManifestNumber, 6> kNumbers = {{
+  static const std::array<ManifestNumber, 12> kNumbers = {{
       {"inertia_s", 0.001, 1.0, 0.03, [](const S& s) { return s.inertia; },
        [](S& s, double v) { s.inertia = v; }},
       {"pelvis_tilt_deg", -45.0, 45.0, 11.0, [](const S& s) { return rig::degrees(s.pelvis_tilt); },
@@ -601,6 +601,18 @@ std::span<const ControllerSet::ManifestNumber> ControllerSet::manifest_numbers()
        [](S& s, double v) { s.cadence = v; }},
       {"acceleration_m_s2", 0.05, 10.0, 0.6, [](const S& s) { return s.acceleration; },
        [](S& s, double v) { s.acceleration = v; }},
+      {"first_step_share", 0.3, 1.0, 0.8, [](const S& s) { return s.first_step; },
+       [](S& s, double v) { s.first_step = v; }},
+      {"first_step_s", 0.2, 2.0, 0.5, [](const S& s) { return s.first_step_duration; },
+       [](S& s, double v) { s.first_step_duration = v; }},
+      {"start_tempo_share", 0.1, 1.0, 0.4, [](const S& s) { return s.start_tempo; },
+       [](S& s, double v) { s.start_tempo = v; }},
+      {"start_easing_s", 0.05, 5.0, 1.0, [](const S& s) { return s.start_easing; },
+       [](S& s, double v) { s.start_easing = v; }},
+      {"closing_lift_leg_lengths", 0.02, 0.3, 0.12, [](const S& s) { return s.closing_lift; },
+       [](S& s, double v) { s.closing_lift = v; }},
+      {"settle_rate_per_s", 1.0, 50.0, 7.0, [](const S& s) { return s.settle_rate; },
+       [](S& s, double v) { s.settle_rate = v; }},
   }};
   return kNumbers;
 }

@@ -8,6 +8,7 @@
 // overloads of the two helpers that branch.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -49,6 +50,15 @@ inline double foot_of(double tilt, const rig::LegAngles& a) {
 // Inclination of the line from `from` to `to`, from the downward vertical, forward positive.
 inline double inclination(rig::Point from, rig::Point to) {
   return rig::detail::arctan2(to.x - from.x, from.y - to.y);
+}
+
+// Two-link IK: the angle at the root between the root-to-target line and the upper link, when
+// links `upper` and `lower` span `distance` (the law of cosines; a distance out of reach gives the
+// straight or folded chain).
+inline double chain_opening(double upper, double lower, double distance) {
+  const double cosine =
+      (upper * upper + distance * distance - lower * lower) / (2.0 * upper * distance);
+  return rig::detail::arccos(std::clamp(cosine, -1.0, 1.0));
 }
 
 // The paper's delta: -1 at the start angle, 0 when the thigh is vertical, +1 at the end angle

@@ -23,6 +23,7 @@
 namespace fuzzygait::gait {
 namespace {
 
+using detail::chain_opening;
 using detail::ControllerBackend;
 using detail::foot_of;
 using detail::inclination;
@@ -97,34 +98,23 @@ constexpr double kStraightLanding = 0.02;
 // m: a toe tip this close to the ground rests on it.
 constexpr double kToesResting = 0.0005;
 constexpr double kLongestTimeStep = 0.05;
-// Standing and starting. People stand with the knee nearly straight (a few degrees of flexion);
-// a stopped body settles over its feet, critically damped at this rate (rad/s: within 5 % of
-// rest in about 0.7 s); a foot that lands as the walk stops comes down flat no faster than a
-// loading response lowers it (rad/s).
+// Standing and starting (the set's start and stop numbers are in ControllerSet). People stand
+// with the knee nearly straight (a few degrees of flexion); a foot that lands as the walk stops
+// comes down flat no faster than a loading response lowers it (rad/s).
 constexpr double kStandingKnee = rig::radians(4.0);
-constexpr double kSettleRate = 7.0;
 constexpr double kFootSettling = rig::radians(120.0);
-// Within this (m) the feet stand side by side: the left steps first.
 // A stop's closing step lasts as long as the body takes to brake over the planted foot, within
 // these (s; people's swing lasts 0.35 to 0.45 s).
 constexpr double kShortestClosingStep = 0.35;
 constexpr double kLongestClosingStep = 0.6;
-// How high a closing step lifts the heel mid-way, in leg lengths (the knee folds as it lifts).
-constexpr double kClosingLift = 0.12;
 // A placed step's knee stays bent at least this much in the air (rad), less towards the landing.
 constexpr double kPlacedKnee = rig::radians(15.0);
-// A start's first step: its swing lasts this long (s) and lands on the heel with the sole this
-// far from the ground's slope, the foot pointing this much further down mid-way (rad).
-constexpr double kFirstSwing = 0.5;
+// A start's first step lands on the heel with the sole this far from the ground's slope, the
+// foot pointing this much further down mid-way (rad).
 constexpr double kFirstStepHeelPitch = rig::radians(15.0);
 constexpr double kFirstStepDip = rig::radians(25.0);
+// Within this (m) the feet stand side by side: the left steps first.
 constexpr double kSideBySide = 0.01;
-// Gait initiation: the first step is this share of the commanded one (people's first step is
-// shorter), and the controllers start at this share of their tempo, rising to all of it over
-// kStartEasing seconds (about the first two steps), so the body accelerates from rest.
-constexpr double kFirstStep = 0.8;
-constexpr double kStartTempo = 0.4;
-constexpr double kStartEasing = 1.0;
 
 // Between `good` (passes `ok`) and `bad` (fails it), the value nearest `bad` that still passes,
 // to 40 halvings.
@@ -400,7 +390,7 @@ void Walker::go() noexcept {
   LegState& stance = s.legs[static_cast<std::size_t>(standing)];
   s.locomotion = Locomotion::Walking;
   s.lead = standing;
-  s.start_tempo = kStartTempo;
+  s.start_tempo = controllers_->start_tempo;
   s.heel_strikes = 0;
   s.pelvis_velocity = {};
   // The standing leg is at mid-stance (delta 0): its sweep ends where a stance of this step
@@ -412,12 +402,12 @@ void Walker::go() noexcept {
     l.velocity = LegAngles{};
   LegState& step = s.legs[static_cast<std::size_t>(stepping)];
   const LegPoints from = points(static_cast<rig::Side>(stepping));
-  lift_off(stepping, std::max(min_step_length(), kFirstStep * step_length()));
+  lift_off(stepping, std::max(min_step_length(), controllers_->first_step * step_length()));
   s.placed_leg = stepping;
   s.placed_first = true;
   s.placed_from = from.heel;
   s.placed_pitch = foot_of(s.pelvis_tilt, step.angles);
-  s.placed_duration = kFirstSwing;
+  s.placed_duration = controllers_->first_step_duration;
 }
 
 double Walker::step_length() const noexcept {
@@ -677,9 +667,9 @@ double Walker::braking_speed() const {
 
 // A time step of a placed step (the leg `leg`, swinging): a stop's closing step or a start's first
 // step. The foot is carried from where it lifted to its target over placed_duration along a
-// minimum-jerk path, the heel lifted kClosingLift mid-way and kept clear of the ground, its sole
-// turning to its landing pitch by four fifths of the way (level for a closing step, on the heel
-// for a first step); hip and knee reach its ankle (two-link IK, the knee forward), the toes
+// minimum-jerk path, the heel lifted the set's closing_lift mid-way and kept clear of the ground,
+// its sole turning to its landing pitch by four fifths of the way (level for a closing step, on the
+// heel for a first step); hip and knee reach its ankle (two-link IK, the knee forward), the toes
 // straighten. True once it is down.
 bool Walker::place_step(int leg, double h) {
   WalkerState& s = state_;
@@ -692,8 +682,8 @@ bool Walker::place_step(int leg, double h) {
   // the ground rather than skim it.)
   const double along = minimum_jerk(first ? std::max(0.0, (u - 0.1) / 0.9) : u);
   // A first step lands on its heel, the toes up, its foot pointing down mid-way as people's does.
-  // The lift (of kClosingLift) comes down with no speed at the landing; a first step's foot
-  // leaves the ground from rest, a closing step's heel is rising already (as fast as a walk's
+  // The lift (of the set's closing_lift) comes down with no speed at the landing; a first step's
+  // foot leaves the ground from rest, a closing step's heel is rising already (as fast as a walk's
   // at toe off; it peaks at 0.58 a third of the way).
   const double arc = std::sin(std::numbers::pi * u);
   const double lift = first ? arc * arc : arc * (1.0 - u);
@@ -707,7 +697,7 @@ bool Walker::place_step(int leg, double h) {
   const double sole_length = g.heel + g.ball;
   Point heel{s.placed_from.x + (l.target_x - s.placed_from.x) * along,
              s.placed_from.y + (ground_y - s.placed_from.y) * along +
-                 kClosingLift * g.leg_length() * lift};
+                 controllers_->closing_lift * g.leg_length() * lift};
   // Heel and ball above the ground until the landing (kSwingClearance mid-way); the toes bend up
   // where it holds them (finish_step()).
   const double clearance = kSwingClearance * lift;
@@ -734,10 +724,7 @@ bool Walker::place_step(int leg, double h) {
   const double towards = inclination(hip, ankle);
   const double distance = std::clamp(std::hypot(ankle.x - hip.x, ankle.y - hip.y),
                                      std::abs(g.thigh - g.shank) + 1e-9, g.thigh + g.shank - 1e-9);
-  const double opening = arccos(std::clamp(
-      (g.thigh * g.thigh + distance * distance - g.shank * g.shank) / (2.0 * g.thigh * distance),
-      -1.0, 1.0));
-  const double thigh = towards + opening;
+  const double thigh = towards + chain_opening(g.thigh, g.shank, distance);
   const rig::detail::SinCos t = sin_cos(thigh);
   const Point knee{hip.x + g.thigh * t.sin, hip.y - g.thigh * t.cos};
   const Point reached{hip.x + distance * std::sin(towards), hip.y - distance * std::cos(towards)};
@@ -790,7 +777,7 @@ void Walker::stand(double h) {
   const Point rest = standing_pelvis();
   const bool flat = s.legs[0].phase == Phase::Flat && s.legs[1].phase == Phase::Flat;
   if (flat && s.pelvis.x == rest.x && s.pelvis.y == rest.y) return;  // standing still
-  const double w = kSettleRate;
+  const double w = controllers_->settle_rate;
   s.pelvis_velocity.x += h * (w * w * (rest.x - s.pelvis.x) - 2.0 * w * s.pelvis_velocity.x);
   s.pelvis_velocity.y += h * (w * w * (rest.y - s.pelvis.y) - 2.0 * w * s.pelvis_velocity.y);
   s.pelvis.x += h * s.pelvis_velocity.x;
@@ -1033,14 +1020,12 @@ bool Walker::close_chain(int leg) {
   const double distance = std::sqrt(dx * dx + dy * dy);
   if (distance > s.thigh + lower - 1e-9) return false;
   const double d = std::max(distance, std::abs(s.thigh - lower) + 1e-9);
-  const double cos_hip =
-      std::clamp((s.thigh * s.thigh + d * d - lower * lower) / (2.0 * s.thigh * d), -1.0, 1.0);
   // Two chains reach the target, mirrored about the hip-target line; the knee bends forward in
   // both when the lower link leans forward of the shank (a near-straight knee on the ball). Keep
   // the one nearest the leg's thigh, so a foot that touches down does not jump to the other.
   const double current = thigh_of(tilt, l.angles);
   const double towards = inclination(hip, target);
-  const double opening = arccos(cos_hip);
+  const double opening = chain_opening(s.thigh, lower, d);
   auto shank_of_chain = [&](double thigh) {
     const rig::detail::SinCos t = sin_cos(thigh);
     const Point knee{hip.x + s.thigh * t.sin, hip.y - s.thigh * t.cos};
@@ -1421,9 +1406,7 @@ double WalkerStages::knee_end_thigh(const Walker& w, int leg, Point hip, Point t
   if (!(distance < s.thigh + lower) || !(distance > std::abs(s.thigh - lower))) {
     return std::numeric_limits<double>::quiet_NaN();
   }
-  const double cos_hip =
-      (s.thigh * s.thigh + distance * distance - lower * lower) / (2.0 * s.thigh * distance);
-  return inclination(hip, target) + arccos(std::clamp(cos_hip, -1.0, 1.0));
+  return inclination(hip, target) + chain_opening(s.thigh, lower, distance);
 }
 
 void WalkerStages::integrate(Walker& w, double h, StepData& d) {
@@ -1744,7 +1727,8 @@ void WalkerStages::finish_step(Walker& w, double h, StepData& d) {
   }
   if (w.state_.start_tempo < 1.0) {
     w.state_.start_tempo =
-        std::min(1.0, w.state_.start_tempo + h * (1.0 - kStartTempo) / kStartEasing);
+        std::min(1.0, w.state_.start_tempo +
+                          h * (1.0 - w.controllers_->start_tempo) / w.controllers_->start_easing);
   }
   // Walking by speed, the speed moves toward the commanded one at the set's acceleration; by step
   // length it is the step's at the set's cadence at once (the tempo is 1).
