@@ -201,7 +201,7 @@ try {
   await load();
   console.log(`page loaded and walked in ${Date.now() - loadStart} ms`);
   check(await page.locator('circle.knot').count() > 20, 'every partition controller shows its knots');
-  check((await page.locator('.controller').count()) === 36, 'all 36 controllers of the default set are shown');
+  check((await page.locator('.controller').count()) === 37, 'all 37 controllers of the default set are shown');
   check((await page.locator('#figures').textContent()).includes('Every contact bound met'),
     'the contact figures show the default walk meets its bounds');
   await shot('studio_loaded.png');
@@ -210,8 +210,8 @@ try {
   {
     const group = page.locator('details.upper-body');
     const summary = await group.locator('summary').first().textContent();
-    check((await group.locator('.controller').count()) === 6 && summary.startsWith('Upper body'),
-      `the six upper body controllers are listed as a group ("${summary}")`);
+    check((await group.locator('.controller').count()) === 7 && summary.startsWith('Upper body'),
+      `the seven upper body controllers are listed as a group ("${summary}")`);
     await group.locator('summary').first().click();
     // The left hand's x, y, z (mm) at every frame of the walk the page holds: the running sum of
     // the changes sent.

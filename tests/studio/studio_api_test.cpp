@@ -77,8 +77,9 @@ TEST(StudioApi, StateShowsEveryControllerWithItsWordsKnotsAndRules) {
   Studio studio(quick("state"));
   const json state = studio.state();
   EXPECT_EQ(state.at("set").at("name"), "default");
-  // The eight slots, the default set's 22 terrain words' controllers and its six upper body ones.
-  EXPECT_EQ(state.at("set").at("controllers").size(), 36u);
+  // The eight slots, the default set's 22 terrain words' controllers and its seven upper body
+  // ones.
+  EXPECT_EQ(state.at("set").at("controllers").size(), 37u);
   const json& knee = controller(state, "swing_knee");
   EXPECT_EQ(knee.at("title"), "swing knee");
   const json& delta = knee.at("inputs").at(0);
@@ -556,7 +557,7 @@ TEST(StudioApi, FiredRulesAreTheLibrarysEvaluationAtTheInputsTheWalkRead) {
     EXPECT_EQ(frame, static_cast<std::size_t>(std::lround(time * 30.0)));
     EXPECT_NEAR(fired.at("time").get<double>(), frames.at("time").at(frame).get<double>(), 1e-4);
     const json& controllers = fired.at("controllers");
-    EXPECT_EQ(controllers.size(), 14u) << "the eight slots and the six upper body controllers";
+    EXPECT_EQ(controllers.size(), 15u) << "the eight slots and the seven upper body controllers";
     for (int slot = 0; slot < gait::kSlotCount; ++slot) {
       const std::string id(gait::slot_name(slot));
       const json& c = controllers.at(id);
@@ -1322,7 +1323,7 @@ TEST(StudioApi, UpperBodyControllersAreEditedAsTheLegsAndMoveTheBody) {
   EXPECT_EQ(shoulder.at("inputs").at(0).at("knots"), json({-20.0, 11.0, 42.0}));
   for (const char* id :
        {"upper_body_elbow", "upper_body_pelvis_rotation", "upper_body_thorax_rotation",
-        "upper_body_pelvis_obliquity", "upper_body_pelvis_sway"}) {
+        "upper_body_pelvis_obliquity", "upper_body_pelvis_sway", "upper_body_trunk_lean"}) {
     EXPECT_EQ(controller(state, id).at("group"), "upper body") << id;
   }
   const json before = studio.walk().at("walk");
@@ -1382,7 +1383,7 @@ TEST(StudioApi, AnUpperBodyEditIsSavedToItsFileAndOpensAgain) {
   ASSERT_TRUE(std::filesystem::is_regular_file(folder / "upper_body_elbow.fll"));
   std::ifstream manifest(folder / "manifest.json");
   const json names = json::parse(manifest).at("upper_body");
-  EXPECT_EQ(names.size(), 6u);
+  EXPECT_EQ(names.size(), 7u);
   EXPECT_EQ(names.at("elbow"), "upper_body_elbow.fll");
   const gait::ControllerSet loaded = gait::ControllerSet::load(folder);
   const auto& elbow = loaded.upper_body[static_cast<std::size_t>(gait::UpperBody::Elbow)];

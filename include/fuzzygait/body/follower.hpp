@@ -18,7 +18,8 @@
 //            (obliquity) and sways sideways over the feet; a set without them hangs the arms and
 //            keeps pelvis and chest square to the path, over it, as a standing walker does
 //            (the answers fade out over half a second as it stands, and in as it walks on).
-//            The trunk stays upright; the head turns to the path look_ahead metres ahead.
+//            The trunk leans forward on slopes and stairs (trunk_lean, from the ground under
+//            the feet); the head stays upright and turns to the path look_ahead metres ahead.
 // On a straight path with step_width equal to the hip width the legs are the walker's to
 // rounding.
 #pragma once
@@ -66,7 +67,8 @@ class PathFollower {
   const Humanoid& humanoid() const noexcept { return humanoid_; }
 
   // The metrics an upper body controller reads of leg `leg` (0 left, 1 right) of the walker now:
-  // delta, other_delta, hip, knee, ankle, toe and pace; the ground's left 0.
+  // delta, other_delta, hip, knee, ankle, toe, pace, and its ground's incline and stairs as the
+  // walker's controllers read them (Walker::ground_metrics()); sole 0.
   static gait::MetricValues leg_metrics(const gait::Walker& walker, int leg) noexcept;
 
  private:
@@ -114,6 +116,11 @@ class PathFollower {
   // chest square) over kUpperBodyEasing seconds once the walker stands, and back when it walks.
   double upper_body_share_ = 1.0;
   static constexpr double kUpperBodyEasing = 0.5;
+  // The trunk's lean (radians, forward +) follows the controller's answer with this time constant
+  // (s): a foothold's incline changes from one step to the next, the lean over about a step.
+  double lean_ = 0.0;
+  bool updated_ = false;
+  static constexpr double kLeanEasing = 0.3;
   BodyPose pose_{};
   double drop_ = 0.0;
 };

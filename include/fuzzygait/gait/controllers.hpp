@@ -75,10 +75,12 @@ enum class UpperBody : std::uint8_t {
   PelvisRotation,
   ThoraxRotation,
   PelvisObliquity,
-  PelvisSway
+  PelvisSway,
+  TrunkLean
 };
-inline constexpr int kUpperBodyCount = 6;
-// "shoulder", "elbow", "pelvis_rotation", "thorax_rotation", "pelvis_obliquity", "pelvis_sway".
+inline constexpr int kUpperBodyCount = 7;
+// "shoulder", "elbow", "pelvis_rotation", "thorax_rotation", "pelvis_obliquity", "pelvis_sway",
+// "trunk_lean".
 std::string_view upper_body_name(UpperBody part);
 
 // The kinds of ground a controller set may have words for (the manifest's "terrain").
@@ -182,8 +184,8 @@ struct ControllerSet {
   double slowest_pace() const;
   double fastest_pace() const;
   // The upper body's controllers, by UpperBody; a part without one holds still (arms hanging,
-  // pelvis and chest square to the path). They read delta, other_delta, hip, knee, ankle, toe and
-  // pace only (body::PathFollower supplies those).
+  // pelvis and chest square to the path). They read delta, other_delta, hip, knee, ankle, toe,
+  // incline, stairs and pace (body::PathFollower supplies those), not sole.
   std::array<std::optional<Controller>, kUpperBodyCount> upper_body;
 
   // How the controllers change with the ground (the manifest's "terrain": "slopes" for level

@@ -229,6 +229,11 @@ class Walker {
   double time() const noexcept { return state_.time; }
   const rig::Segments& segments() const noexcept { return segments_; }
   const ControllerSet& controllers() const noexcept { return *controllers_; }
+  // The ground a leg's controllers read at the last time step: its metrics "incline" (deg, uphill
+  // +) and "stairs" (0 to 1), in that order; both 0 before the first step.
+  std::array<double, 2> ground_metrics(rig::Side side) const noexcept {
+    return blend_ground_[rig::index(side)];
+  }
 
   // Contact events since the last clear_events(), at most WalkerOptions::event_capacity (the
   // oldest dropped).

@@ -43,6 +43,8 @@ Sides sides_of(gait::UpperBody part) {
     case gait::UpperBody::PelvisObliquity:
     case gait::UpperBody::PelvisSway:
       return Sides::LeftMinusRight;
+    case gait::UpperBody::TrunkLean:  // not fitted (below)
+      return Sides::OwnArm;
   }
   return Sides::OwnArm;
 }
@@ -62,6 +64,8 @@ double value_of(const UpperBodySeries& s, gait::UpperBody part, std::size_t side
       return s.pelvis_obliquity[k];
     case gait::UpperBody::PelvisSway:
       return s.pelvis_sway[k];
+    case gait::UpperBody::TrunkLean:  // not fitted (below)
+      return 0.0;
   }
   return 0.0;
 }
@@ -259,6 +263,11 @@ UpperBodyFit fit_upper_body(const gait::ControllerSet& base, std::span<const Upp
     const std::string name(gait::upper_body_name(part));
     const std::optional<gait::Controller>& controller = base.upper_body[index];
     if (!controller) continue;
+    if (part == gait::UpperBody::TrunkLean) {
+      // It answers the ground's incline, and the clips are level walks.
+      fit.notes.push_back(name + ": kept (the clips walk level ground: nothing to fit it to)");
+      continue;
+    }
     const fuzzy::Engine& engine = controller->engine();
     if (engine.outputs.size() != 1 ||
         !std::all_of(engine.outputs[0].terms.begin(), engine.outputs[0].terms.end(),

@@ -104,6 +104,9 @@ gait::MetricValues PathFollower::leg_metrics(const gait::Walker& walker, int leg
   set(gait::Metric::Ankle, rig::degrees(l.angles.ankle));
   set(gait::Metric::Toe, rig::degrees(l.angles.toe));
   set(gait::Metric::Pace, gait::Walker::pace(state.speed, walker.segments()));
+  const std::array<double, 2> ground = walker.ground_metrics(static_cast<rig::Side>(leg));
+  set(gait::Metric::Incline, ground[0]);
+  set(gait::Metric::Stairs, ground[1]);
   return metrics;
 }
 
@@ -137,11 +140,15 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
   // turns left +) as its left side comes forward.
   // The upper body plays while the walker walks and fades to rest while it stands.
   const double moving = walker.standing() ? 0.0 : 1.0;
+  // (The first update counts as a start.)
+  const bool restarted = walker.time() < last_time_ || !updated_;
+  updated_ = true;
+  const double elapsed = walker.time() - last_time_;
   if (walker.time() < last_time_) {
     feet_ = {};  // started again: nothing stands where it stood
     upper_body_share_ = moving;
   } else if (!(upper_body_share_ == moving)) {
-    const double most = (walker.time() - last_time_) / kUpperBodyEasing;
+    const double most = elapsed / kUpperBodyEasing;
     upper_body_share_ += std::clamp(moving - upper_body_share_, -most, most);
   }
   last_time_ = walker.time();
@@ -159,7 +166,17 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
                       0.01 * segments.leg_length();  // to the left +, m
   const Quat pelvis = facing * yaw(turn(gait::UpperBody::PelvisRotation)) *
                       axis_angle(kForward, obliquity) * axis_angle(kLeft, sagittal.pelvis_tilt);
-  const Quat thorax = facing * yaw(turn(gait::UpperBody::ThoraxRotation));
+  // The trunk leans forward (+) by the mean of the two sides' answers (on slopes and stairs),
+  // eased.
+  const double lean = 0.5 * (upper_body_angle(set, gait::UpperBody::TrunkLean, metrics[0]) +
+                             upper_body_angle(set, gait::UpperBody::TrunkLean, metrics[1]));
+  if (restarted) {
+    lean_ = lean;
+  } else if (!(lean_ == lean)) {
+    lean_ += (lean - lean_) * -std::expm1(-elapsed / kLeanEasing);
+  }
+  Quat thorax = facing * yaw(turn(gait::UpperBody::ThoraxRotation));
+  if (lean_ != 0.0) thorax = thorax * axis_angle(kLeft, lean_);
   const Vec3 hips_before_drop =
       Vec3{at_hips.point.x, sagittal.pelvis.y, at_hips.point.z} + sway * left_of(at_hips.heading);
   const double reach = segments.thigh + segments.shank;

@@ -225,8 +225,8 @@ void read_upper_body(const Value& upper_body, const std::map<std::string, std::s
     if (part < 0) {
       throw std::invalid_argument(
           where(manifest_source, file) + "unknown upper body part '" + key +
-          "' (shoulder, elbow, pelvis_rotation, thorax_rotation, pelvis_obliquity or "
-          "pelvis_sway)");
+          "' (shoulder, elbow, pelvis_rotation, thorax_rotation, pelvis_obliquity, "
+          "pelvis_sway or trunk_lean)");
     }
     if (file.kind != Value::Kind::String) {
       throw std::invalid_argument(where(manifest_source, file) + "upper body part '" + key +
@@ -242,10 +242,10 @@ void read_upper_body(const Value& upper_body, const std::map<std::string, std::s
                  path);
     for (std::size_t i = 0; i < c.input_count(); ++i) {
       const Metric m = c.input(i);
-      if (m == Metric::Sole || m == Metric::Incline || m == Metric::Stairs) {
+      if (m == Metric::Sole) {
         throw std::invalid_argument(path +
                                     ": the upper body reads delta, other_delta, hip, knee, "
-                                    "ankle, toe or pace, not '" +
+                                    "ankle, toe, incline, stairs or pace, not '" +
                                     std::string(metric_name(m)) + "'");
       }
     }
@@ -452,7 +452,8 @@ std::string ControllerSet::stride_problem() const {
 
 std::string_view upper_body_name(UpperBody part) {
   static constexpr std::array<std::string_view, kUpperBodyCount> kNames = {
-      "shoulder", "elbow", "pelvis_rotation", "thorax_rotation", "pelvis_obliquity", "pelvis_sway"};
+      "shoulder",         "elbow",       "pelvis_rotation", "thorax_rotation",
+      "pelvis_obliquity", "pelvis_sway", "trunk_lean"};
   return kNames.at(static_cast<std::size_t>(part));
 }
 
