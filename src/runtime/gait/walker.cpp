@@ -113,6 +113,11 @@ constexpr double kPlacedKnee = rig::radians(15.0);
 // foot pointing this much further down mid-way (rad).
 constexpr double kFirstStepHeelPitch = rig::radians(15.0);
 constexpr double kFirstStepDip = rig::radians(25.0);
+// On a stair's tread it lands on the forefoot, the sole this far from the tread, toes down (rad).
+constexpr double kFirstStepBallPitch = rig::radians(10.0);
+// Over a placed step's way the ground is taken to fall from a corner a metre a metre, easing in
+// over this share of the step's time after the lift and out over as much before the landing.
+constexpr double kEdgeEasing = 0.2;
 // Within this (m) the feet stand side by side: the left steps first.
 constexpr double kSideBySide = 0.01;
 
@@ -688,22 +693,44 @@ bool Walker::place_step(int leg, double h) {
   const double arc = std::sin(std::numbers::pi * u);
   const double lift = first ? arc * arc : arc * (1.0 - u);
   const double slope = terrain_->slope(l.target_x);
-  const double landing = first ? slope + kFirstStepHeelPitch : slope;
+  // (On a stair's tread a first step lands on the forefoot, toes down, as the walk's steps there
+  // do.)
+  const bool ball_first = first && terrain_->on_tread(l.target_x);
+  const bool heel_first = first && !ball_first;
+  const double landing = heel_first   ? slope + kFirstStepHeelPitch
+                         : ball_first ? slope - kFirstStepBallPitch
+                                      : slope;
   const double pitch = s.placed_pitch +
                        (landing - s.placed_pitch) * minimum_jerk(std::min(1.0, u / 0.8)) -
                        (first ? kFirstStepDip * lift : 0.0);
   const double ground_y = terrain_->height(terrain_->point_on_run(l.target_x, l.target_run));
   const rig::detail::SinCos sole = sin_cos(pitch);
   const double sole_length = g.heel + g.ball;
+  // (Landing on the forefoot, the heel comes down above the ground.)
+  const double landing_heel_y =
+      ground_y + (ball_first ? sole_length * std::sin(kFirstStepBallPitch) : 0.0);
   Point heel{s.placed_from.x + (l.target_x - s.placed_from.x) * along,
-             s.placed_from.y + (ground_y - s.placed_from.y) * along +
+             s.placed_from.y + (landing_heel_y - s.placed_from.y) * along +
                  controllers_->closing_lift * g.leg_length() * lift};
   // Heel and ball above the ground until the landing (kSwingClearance mid-way); the toes bend up
-  // where it holds them (finish_step()).
+  // where it holds them (finish_step()). Over a stair's edge the ground is taken as the corners'
+  // cones (cleared_ground()), so the foot rises to an edge and comes down past it smoothly, from
+  // the ground it lifts from to the ground it lands on.
   const double clearance = kSwingClearance * lift;
   const double ball_x = heel.x + sole_length * sole.cos;
-  heel.y = std::max({heel.y, terrain_->height(heel.x) + clearance,
-                     terrain_->height(ball_x) - sole_length * sole.sin + clearance});
+  const double lowest = std::min(s.placed_from.x, l.target_x) - sole_length;
+  const double highest = std::max(s.placed_from.x, l.target_x) + 2.0 * sole_length;
+  const std::span<const Point> corners = terrain_->corners_between(lowest, highest);
+  const double edges = minimum_jerk(std::min(1.0, std::min(u, 1.0 - u) / kEdgeEasing));
+  auto cleared_ground = [&](double x) {
+    const double ground = terrain_->height(x);
+    double cone = ground;
+    for (const Point& c : corners)
+      cone = std::max(cone, c.y - std::abs(x - c.x));
+    return ground + edges * (cone - ground);
+  };
+  heel.y = std::max({heel.y, cleared_ground(heel.x) + clearance,
+                     cleared_ground(ball_x) - sole_length * sole.sin + clearance});
   Point ankle{heel.x + g.heel * sole.cos - g.ankle_height * sole.sin,
               heel.y + g.heel * sole.sin + g.ankle_height * sole.cos};
   const Point hip = s.pelvis;
@@ -711,7 +738,10 @@ bool Walker::place_step(int leg, double h) {
   // and less towards the landing, and from none at a first step's start) is lifted within it, as
   // a foot left behind a moving body is.
   if (u < 1.0) {
-    const rig::detail::SinCos bend = sin_cos(kPlacedKnee * (first ? arc : 1.0 - u));
+    // (A closing step's bend comes in over its first tenth: a leg lifting straighter, as from a
+    // stair, is not pulled up at once.)
+    const rig::detail::SinCos bend =
+        sin_cos(kPlacedKnee * (first ? arc : std::min(1.0, 10.0 * u) * (1.0 - u)));
     const double reach =
         std::sqrt(g.thigh * g.thigh + g.shank * g.shank + 2.0 * g.thigh * g.shank * bend.cos);
     const double dx = ankle.x - hip.x;
@@ -737,7 +767,11 @@ bool Walker::place_step(int leg, double h) {
   if (u < 1.0) return false;
   l.angles.toe = 0.0;
   const LegPoints p = WalkerStages::leg_points(*this, leg, s.pelvis, l.angles);
-  strike(leg, first ? Phase::Heel : Phase::Flat, {p.heel.x, ground_y});
+  if (ball_first) {
+    strike(leg, Phase::Ball, {p.ball.x, ground_y});
+  } else {
+    strike(leg, heel_first ? Phase::Heel : Phase::Flat, {p.heel.x, ground_y});
+  }
   return true;
 }
 
