@@ -132,7 +132,7 @@ TEST(CApiBody, WithoutASkeletonTheBodyStandsOnTheWalkersLegs) {
     fg_pose pose;
     fg_walker_pose(walker, &pose);
     EXPECT_NEAR(body->position[FG_HIPS].y, pose.pelvis_y - fg_follower_pelvis_drop(follower), 1e-9);
-    EXPECT_LT(fg_follower_pelvis_drop(follower), 0.002);
+    EXPECT_LT(fg_follower_pelvis_drop(follower), 0.003);          // the pelvis's turn: a few mm
     EXPECT_NEAR(body->position[FG_HIPS].z, pose.pelvis_x, 0.01);  // along +Z, but for the sway
   }
   // Winter's 1.60 m body: the top of the head at 1.60 m above the hips' 0.530 x 1.60 m.
