@@ -1352,12 +1352,12 @@ TEST(StudioApi, UpperBodyControllersAreEditedAsTheLegsAndMoveTheBody) {
   // A rule: the pelvis turns forward, not back, on the side whose other leg lands.
   std::vector<std::string> rules = rules_of(controller(state, "upper_body_pelvis_rotation"));
   ASSERT_EQ(rules.size(), 6u);
-  EXPECT_EQ(rules[2], "if hip is neutral and knee is bent then angle is ahead");
-  EXPECT_EQ(rules[5], "if hip is flexed and knee is straight then angle is back");
-  rules[5] = "if hip is flexed and knee is straight then angle is forward";
+  EXPECT_EQ(rules[3], "if hip is neutral and knee is bent then angle is ahead");
+  EXPECT_EQ(rules[4], "if hip is flexed and knee is straight then angle is back");
+  rules[4] = "if hip is flexed and knee is straight then angle is forward";
   const json ruled =
       studio.edit_rules({{"controller", "upper_body_pelvis_rotation"}, {"rules", rules}});
-  EXPECT_EQ(ruled.at("history").at("undo_label"), "upper_body_pelvis_rotation: rule 6 edited");
+  EXPECT_EQ(ruled.at("history").at("undo_label"), "upper_body_pelvis_rotation: rule 5 edited");
   EXPECT_GT(largest_move(ruled.at("walk"), word.at("walk"), "leftUpperLeg"), 0.007);
   EXPECT_EQ(ruled.at("walk").at("frames"), before.at("frames"));
 
