@@ -10,6 +10,7 @@
 #include "fuzzygait/fuzzy/evaluator.hpp"
 #include "fuzzygait/fuzzy/fld.hpp"
 #include "fuzzygait/fuzzy/fll.hpp"
+#include "fuzzygait/fuzzy/partition.hpp"
 #include "fuzzygait/io/files.hpp"
 
 namespace fuzzygait::cli {
@@ -191,6 +192,13 @@ void add_fuzzy_command(CLI::App& app) {
     strict.ordered_points = true;
     const Engine engine = read_fll_file(*check_path, strict);
     print_summary(engine, std::cout);
+    // Whether a walker evaluates it by its packed partition (faster than the general engine),
+    // and if not, what keeps it off: a shape an author can usually fix (a rule out of order).
+    std::string off_fast_path;
+    std::cout << "walker fast path: "
+              << (fuzzy::as_partition(engine, &off_fast_path) ? "yes"
+                                                              : "no (" + off_fast_path + ")")
+              << "\n";
     const std::vector<std::string> problems = engine.problems();
     if (problems.empty()) {
       std::cout << "status: ready\n";

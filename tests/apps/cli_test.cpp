@@ -386,6 +386,27 @@ TEST(FuzzyCheckCommand, FlagsATermWhosePointsAreOutOfOrder) {
   const auto fixed = run_program("fuzzy check " + shell_quoted(fll));
   EXPECT_EQ(fixed.status, 0) << fixed.output;
   EXPECT_THAT(fixed.output, HasSubstr("status: ready"));
+  // A Mamdani engine is evaluated by the general engine; a shipped controller is not, and one
+  // whose rules leave the row-major order says which rule.
+  EXPECT_THAT(fixed.output,
+              HasSubstr("walker fast path: no (input 'delta' does not lock its range)"));
+  const std::filesystem::path sway = std::filesystem::path(FUZZYGAIT_SOURCE_DIR) / "controllers" /
+                                     "default" / "upper_body_pelvis_sway.fll";
+  const auto shipped = run_program("fuzzy check " + shell_quoted(sway));
+  EXPECT_EQ(shipped.status, 0) << shipped.output;
+  EXPECT_THAT(shipped.output, HasSubstr("walker fast path: yes"));
+  std::string rules = read_text(sway);
+  const std::string first =
+      "  rule: if knee is straight and hip is extended then sway is centred\n";
+  const std::string second = "  rule: if knee is straight and hip is neutral then sway is over\n";
+  ASSERT_NE(rules.find(first + second), std::string::npos);
+  rules.replace(rules.find(first + second), first.size() + second.size(), second + first);
+  const std::filesystem::path swapped = scratch("swapped.fll");
+  std::ofstream(swapped) << rules;
+  const auto off = run_program("fuzzy check " + shell_quoted(swapped));
+  EXPECT_EQ(off.status, 0) << off.output;
+  EXPECT_THAT(off.output, HasSubstr("walker fast path: no (rule 1 is not 'if knee is straight and "
+                                    "hip is extended then ...' in row-major order)"));
 }
 
 TEST(EvalCommand, BadFilesNameTheFileAndLine) {
