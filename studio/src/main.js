@@ -496,7 +496,7 @@ const PARAMETER_LABELS = {
   first_step_s: 'first step swing (s)',
   start_tempo_share: 'starting tempo (share)',
   start_easing_s: 'start easing (s)',
-  closing_lift_leg_lengths: 'closing step lift (leg lengths)',
+  placed_step_lift_leg_lengths: 'first and closing step lift (leg lengths)',
   settle_rate_per_s: 'settling rate (1/s)',
 };
 function buildParameters() {

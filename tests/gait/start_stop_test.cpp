@@ -432,6 +432,7 @@ TEST(StartStop, TheThirdStepIsAtTheWalksSpeedAsPeoplesIs) {
 // first step, a lower closing step and a quicker settle walks them.
 TEST(StartStop, TheSetsStartAndStopNumbersShapeTheStartAndStop) {
   const terrain::Terrain ground = terrain::Terrain::flat();
+  // The first strike's time after go() and the first step's length, and the second strike's time.
   auto first_step = [&](const gait::ControllerSet& set) {
     gait::WalkerOptions o;
     o.step_length = 0.7;
@@ -439,13 +440,20 @@ TEST(StartStop, TheSetsStartAndStopNumbersShapeTheStartAndStop) {
     gait::Walker w(set, o, ground);
     const double heel = w.points(rig::Side::Left).heel.x;
     w.go();
-    for (int i = 0; i < 480; ++i) {
+    std::array<double, 3> out{-1.0, 0.0, -1.0};
+    for (int i = 0; i < 960 && out[2] < 0.0; ++i) {
       w.clear_events();
       w.advance(kFrame);
-      for (const gait::EventRecord& e : w.events())
-        if (e.event == gait::Event::HeelStrike) return std::array{e.time, e.where.x - heel};
+      for (const gait::EventRecord& e : w.events()) {
+        if (e.event != gait::Event::HeelStrike) continue;
+        if (out[0] < 0.0) {
+          out = {e.time, e.where.x - heel, -1.0};
+        } else if (out[2] < 0.0) {
+          out[2] = e.time;
+        }
+      }
     }
-    return std::array{-1.0, 0.0};
+    return out;
   };
   auto stop = [&](const gait::ControllerSet& set) {
     gait::WalkerOptions o;
@@ -472,7 +480,7 @@ TEST(StartStop, TheSetsStartAndStopNumbersShapeTheStartAndStop) {
   gait::ControllerSet brisk = default_set();
   brisk.first_step = 0.95;
   brisk.first_step_duration = 0.7;
-  brisk.closing_lift = 0.06;
+  brisk.placed_step_lift = 0.06;
   brisk.settle_rate = 14.0;
   const auto usual_start = first_step(default_set());
   const auto brisk_start = first_step(brisk);
@@ -480,6 +488,14 @@ TEST(StartStop, TheSetsStartAndStopNumbersShapeTheStartAndStop) {
   EXPECT_NEAR(brisk_start[0], 0.7, 0.01);
   EXPECT_NEAR(usual_start[1], 0.8 * 0.7, 0.01);
   EXPECT_NEAR(brisk_start[1], 0.95 * 0.7, 0.01);
+  // Started at all of its tempo, the second step comes sooner after the first.
+  gait::ControllerSet eager = default_set();
+  eager.start_tempo = 1.0;
+  eager.start_easing = 0.05;
+  const auto eager_start = first_step(eager);
+  ASSERT_GT(usual_start[2], 0.0);
+  ASSERT_GT(eager_start[2], 0.0);
+  EXPECT_LT(eager_start[2] - eager_start[0], 0.85 * (usual_start[2] - usual_start[0]));
   const auto usual_stop = stop(default_set());
   const auto brisk_stop = stop(brisk);
   ASSERT_GT(usual_stop[0], 0.0);

@@ -1397,7 +1397,7 @@ TEST(StudioApi, AnUpperBodyEditIsSavedToItsFileAndOpensAgain) {
   EXPECT_EQ(timeless(opened.at("walk")), timeless(walk));
 }
 
-TEST(StudioApi, AnUpperBodyControllerReadingTheGroundIsRefused) {
+TEST(StudioApi, AnUpperBodyControllerReadingTheSoleOrAWordItLacksIsRefused) {
   StudioOptions options = quick("upper_body_refusals");
   Studio studio(options);
   // A set whose shoulder reads the sole (as a file of one's own might) does not open: the loader
@@ -1427,7 +1427,8 @@ TEST(StudioApi, AnUpperBodyControllerReadingTheGroundIsRefused) {
     EXPECT_THAT(e.what(), HasSubstr("upper_body_shoulder.fll"));
     EXPECT_THAT(e.what(), HasSubstr("not 'sole'"));
   }
-  // A rule reading the ground in an upper body controller: there is no such input to read.
+  // A rule naming a metric the shoulder does not read: it has no such input (the trunk's lean
+  // reads the incline; the sole no upper body controller may read).
   for (const char* metric : {"sole", "incline", "stairs"}) {
     std::vector<std::string> rules = rules_of(controller(state, "upper_body_shoulder"));
     rules.at(0) = std::string("if ") + metric + " is level then angle is ahead";

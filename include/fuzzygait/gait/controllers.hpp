@@ -68,7 +68,8 @@ inline fuzzy::Workspace& workspace_at(std::vector<fuzzy::Workspace>& workspaces,
 // the left's minus the right's. The frontal plane reads each side's own leg: pelvis_obliquity
 // (how far this side of the pelvis rises, deg; the pelvis rolls by the left's minus the right's)
 // and pelvis_sway (how far the pelvis moves towards this side, percent of the leg's length; it
-// moves by the left's minus the right's).
+// moves by the left's minus the right's). trunk_lean reads each side's own leg's ground (incline,
+// stairs): how far the chest leans forward, deg; it leans by the mean of the two sides'.
 enum class UpperBody : std::uint8_t {
   Shoulder,
   Elbow,
@@ -162,10 +163,10 @@ struct ControllerSet {
   double first_step_duration = 0.5;
   double start_tempo = 0.4;
   double start_easing = 1.0;
-  // Stopping (Walker::stop()): the closing step lifts its heel this high mid-way (leg lengths),
-  // and the standing body settles over its feet critically damped at this rate (1/s: within 5 %
-  // of rest after 4.7 / rate seconds).
-  double closing_lift = 0.12;
+  // The first step and a stop's closing step lift the heel this high (leg lengths; Walker::stop()
+  // and go()); the standing body settles over its feet critically damped at this rate (1/s:
+  // within 5 % of rest after 4.7 / rate seconds).
+  double placed_step_lift = 0.12;
   double settle_rate = 7.0;
   std::vector<Controller> controllers;  // indexed by slot()
   // How long a step people take at each pace (the manifest's "stride": an FLL file reading

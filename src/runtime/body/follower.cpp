@@ -170,13 +170,14 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
   // eased.
   const double lean = 0.5 * (upper_body_angle(set, gait::UpperBody::TrunkLean, metrics[0]) +
                              upper_body_angle(set, gait::UpperBody::TrunkLean, metrics[1]));
-  if (restarted) {
-    lean_ = lean;
-  } else if (!(lean_ == lean)) {
+  if (restarted || std::abs(lean - lean_) < 1e-9) {
+    lean_ = lean;  // (within a nanoradian it is there, so level ground is upright to the bit)
+  } else {
     lean_ += (lean - lean_) * -std::expm1(-elapsed / kLeanEasing);
   }
-  Quat thorax = facing * yaw(turn(gait::UpperBody::ThoraxRotation));
-  if (lean_ != 0.0) thorax = thorax * axis_angle(kLeft, lean_);
+  // The arms hang from the chest as it turns, not as it leans: their swing is from the vertical.
+  const Quat square_chest = facing * yaw(turn(gait::UpperBody::ThoraxRotation));
+  const Quat thorax = lean_ != 0.0 ? square_chest * axis_angle(kLeft, lean_) : square_chest;
   const Vec3 hips_before_drop =
       Vec3{at_hips.point.x, sagittal.pelvis.y, at_hips.point.z} + sway * left_of(at_hips.heading);
   const double reach = segments.thigh + segments.shank;
@@ -294,7 +295,7 @@ const BodyPose& PathFollower::update(const gait::Walker& walker) noexcept {
     const double shoulder = upper_body_angle(set, gait::UpperBody::Shoulder, own);
     const double elbow = upper_body_angle(set, gait::UpperBody::Elbow, own);
     const int arm = index(side == rig::Side::Left ? Joint::left_upper_arm : Joint::right_upper_arm);
-    const Quat upper = thorax * axis_angle(kLeft, -shoulder);
+    const Quat upper = square_chest * axis_angle(kLeft, -shoulder);
     const Quat lower = upper * axis_angle(kLeft, -elbow);
     pose_.rotation[static_cast<std::size_t>(arm)] = upper;
     pose_.rotation[static_cast<std::size_t>(arm + 1)] = lower;  // the lower arm

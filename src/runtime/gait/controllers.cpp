@@ -610,8 +610,9 @@ std::span<const ControllerSet::ManifestNumber> ControllerSet::manifest_numbers()
        [](S& s, double v) { s.start_tempo = v; }},
       {"start_easing_s", 0.05, 5.0, 1.0, [](const S& s) { return s.start_easing; },
        [](S& s, double v) { s.start_easing = v; }},
-      {"closing_lift_leg_lengths", 0.02, 0.3, 0.12, [](const S& s) { return s.closing_lift; },
-       [](S& s, double v) { s.closing_lift = v; }},
+      {"placed_step_lift_leg_lengths", 0.02, 0.3, 0.12,
+       [](const S& s) { return s.placed_step_lift; },
+       [](S& s, double v) { s.placed_step_lift = v; }},
       {"settle_rate_per_s", 1.0, 50.0, 7.0, [](const S& s) { return s.settle_rate; },
        [](S& s, double v) { s.settle_rate = v; }},
   }};

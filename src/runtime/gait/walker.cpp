@@ -36,7 +36,6 @@ using fuzzygait::common::number_text;
 using rig::LegAngles;
 using rig::LegPoints;
 using rig::Point;
-using rig::detail::arccos;
 using rig::detail::arcsin;
 using rig::detail::arctan2;
 using rig::detail::sin_cos;
@@ -672,10 +671,10 @@ double Walker::braking_speed() const {
 
 // A time step of a placed step (the leg `leg`, swinging): a stop's closing step or a start's first
 // step. The foot is carried from where it lifted to its target over placed_duration along a
-// minimum-jerk path, the heel lifted the set's closing_lift mid-way and kept clear of the ground,
-// its sole turning to its landing pitch by four fifths of the way (level for a closing step, on the
-// heel for a first step); hip and knee reach its ankle (two-link IK, the knee forward), the toes
-// straighten. True once it is down.
+// minimum-jerk path, the heel lifted the set's placed_step_lift mid-way and kept clear of the
+// ground, its sole turning to its landing pitch by four fifths of the way (level for a closing
+// step, on the heel for a first step); hip and knee reach its ankle (two-link IK, the knee
+// forward), the toes straighten. True once it is down.
 bool Walker::place_step(int leg, double h) {
   WalkerState& s = state_;
   LegState& l = s.legs[static_cast<std::size_t>(leg)];
@@ -687,9 +686,9 @@ bool Walker::place_step(int leg, double h) {
   // the ground rather than skim it.)
   const double along = minimum_jerk(first ? std::max(0.0, (u - 0.1) / 0.9) : u);
   // A first step lands on its heel, the toes up, its foot pointing down mid-way as people's does.
-  // The lift (of the set's closing_lift) comes down with no speed at the landing; a first step's
-  // foot leaves the ground from rest, a closing step's heel is rising already (as fast as a walk's
-  // at toe off; it peaks at 0.58 a third of the way).
+  // The lift (of the set's placed_step_lift) comes down with no speed at the landing; a first
+  // step's foot leaves the ground from rest, a closing step's heel is rising already (as fast as a
+  // walk's at toe off; it peaks at 0.58 a third of the way).
   const double arc = std::sin(std::numbers::pi * u);
   const double lift = first ? arc * arc : arc * (1.0 - u);
   const double slope = terrain_->slope(l.target_x);
@@ -711,7 +710,7 @@ bool Walker::place_step(int leg, double h) {
       ground_y + (ball_first ? sole_length * std::sin(kFirstStepBallPitch) : 0.0);
   Point heel{s.placed_from.x + (l.target_x - s.placed_from.x) * along,
              s.placed_from.y + (landing_heel_y - s.placed_from.y) * along +
-                 controllers_->closing_lift * g.leg_length() * lift};
+                 controllers_->placed_step_lift * g.leg_length() * lift};
   // Heel and ball above the ground until the landing (kSwingClearance mid-way); the toes bend up
   // where it holds them (finish_step()). Over a stair's edge the ground is taken as the corners'
   // cones (cleared_ground()), so the foot rises to an edge and comes down past it smoothly, from
@@ -811,11 +810,17 @@ void Walker::stand(double h) {
   const Point rest = standing_pelvis();
   const bool flat = s.legs[0].phase == Phase::Flat && s.legs[1].phase == Phase::Flat;
   if (flat && s.pelvis.x == rest.x && s.pelvis.y == rest.y) return;  // standing still
+  // The critically damped settle solved exactly over h (stable at any rate and time step).
   const double w = controllers_->settle_rate;
-  s.pelvis_velocity.x += h * (w * w * (rest.x - s.pelvis.x) - 2.0 * w * s.pelvis_velocity.x);
-  s.pelvis_velocity.y += h * (w * w * (rest.y - s.pelvis.y) - 2.0 * w * s.pelvis_velocity.y);
-  s.pelvis.x += h * s.pelvis_velocity.x;
-  s.pelvis.y += h * s.pelvis_velocity.y;
+  const double decay = std::exp(-w * h);
+  auto settle = [&](double& position, double& velocity, double target) {
+    const double off = position - target;
+    const double carried = velocity + w * off;
+    position = target + (off + carried * h) * decay;
+    velocity = (velocity - w * carried * h) * decay;
+  };
+  settle(s.pelvis.x, s.pelvis_velocity.x, rest.x);
+  settle(s.pelvis.y, s.pelvis_velocity.y, rest.y);
   // (Within 0.01 mm of rest at under 0.1 mm/s it is there: a step no one sees.)
   if (flat && std::hypot(rest.x - s.pelvis.x, rest.y - s.pelvis.y) < 1e-5 &&
       std::hypot(s.pelvis_velocity.x, s.pelvis_velocity.y) < 1e-4) {
