@@ -106,7 +106,8 @@ constexpr double kFootSettling = rig::radians(120.0);
 // these (s; people's swing lasts 0.35 to 0.45 s).
 constexpr double kShortestClosingStep = 0.35;
 constexpr double kLongestClosingStep = 0.6;
-// A placed step's knee stays bent at least this much in the air (rad), less towards the landing.
+// A placed step's knee stays bent this much in the air (rad): a closing step's from a tenth of the
+// way, a first step's most mid-way; less towards the landing.
 constexpr double kPlacedKnee = rig::radians(15.0);
 // A start's first step lands on the heel with the sole this far from the ground's slope, the
 // foot pointing this much further down mid-way (rad).
@@ -673,8 +674,8 @@ double Walker::braking_speed() const {
 // step. The foot is carried from where it lifted to its target over placed_duration along a
 // minimum-jerk path, the heel lifted the set's placed_step_lift mid-way and kept clear of the
 // ground, its sole turning to its landing pitch by four fifths of the way (level for a closing
-// step, on the heel for a first step); hip and knee reach its ankle (two-link IK, the knee
-// forward), the toes straighten. True once it is down.
+// step, on the heel for a first step, on the forefoot for a first step onto a tread); hip and
+// knee reach its ankle (two-link IK, the knee forward), the toes straighten. True once it is down.
 bool Walker::place_step(int leg, double h) {
   WalkerState& s = state_;
   LegState& l = s.legs[static_cast<std::size_t>(leg)];
